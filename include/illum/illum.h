@@ -1,0 +1,299 @@
+/*
+ * illum — global illumination in C.  The whole public API is this header.
+ *
+ * Usage in short:
+ *
+ *     il_error err = {0};
+ *     il_scene *scene = NULL;
+ *     if (il_scene_load("cornell", NULL, &scene, &err) != IL_OK ||
+ *         il_scene_commit(scene, &err) != IL_OK) { fprintf(stderr, "%s\n", err.message); ... }
+ *     il_film *film = NULL;
+ *     il_film_create(512, 512, &film, &err);
+ *     il_render_desc rd = {.spp = 64};           // zero fields mean "the default"
+ *     il_render(scene, film, &rd, NULL, &err);
+ *     il_image img = {0};
+ *     il_film_resolve(film, &img);
+ *     il_image_write(&img, "out.exr", NULL, &err);
+ *     il_image_free(&img); il_film_release(film); il_scene_release(scene);
+ *
+ * Conventions
+ * - Every fallible call returns an il_status and, when `err` is not NULL, fills
+ *   it with a one-line message naming the file or value at fault.
+ * - Structs named *_desc configure work and are valid when zero-initialised:
+ *   a zero field means the documented default.
+ * - The library never prints and never exits; warnings and progress reach the
+ *   caller through callbacks.  There is no global state: two scenes may be
+ *   loaded and rendered from two threads.
+ * - Units: right-handed, y up, metres.  Radiometric quantities are linear
+ *   Rec.709 RGB: radiance in W/(sr m^2), intensity in W/sr, irradiance in W/m^2.
+ *   An emissive surface emits its radiance from its front face only (the side
+ *   its shading normal points to) unless marked two-sided.
+ */
+#ifndef ILLUM_H
+#define ILLUM_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define IL_VERSION_MAJOR 0
+#define IL_VERSION_MINOR 1
+#define IL_VERSION_PATCH 0
+#define IL_VERSION_STRING "0.1.0"
+
+/* ------------------------------------------------------------------ errors */
+
+typedef enum il_status {
+    IL_OK = 0,
+    IL_ERR_IO,        /* a file could not be opened, read, written or renamed */
+    IL_ERR_FORMAT,    /* a file is corrupt, truncated or of an unknown format */
+    IL_ERR_INVALID,   /* bad input: absurd parameter, empty scene, no light */
+    IL_ERR_MEMORY,    /* out of memory */
+    IL_ERR_RUNTIME,   /* a dependency (Embree, assimp, OpenEXR) failed */
+    IL_ERR_CANCELLED  /* the progress callback asked to stop */
+} il_status;
+
+typedef struct il_error {
+    il_status status;
+    char message[512];
+} il_error;
+
+const char *il_status_name(il_status status);
+
+/* ------------------------------------------------------------ basic types */
+
+typedef struct il_vec2 { float x, y; } il_vec2;
+typedef struct il_vec3 { float x, y, z; } il_vec3;
+
+typedef enum il_log_level { IL_LOG_INFO = 0, IL_LOG_WARNING } il_log_level;
+typedef void (*il_log_fn)(il_log_level level, const char *message, void *user);
+
+/* -------------------------------------------------------------- materials */
+
+typedef enum il_material_type {
+    IL_MATERIAL_DIFFUSE = 0, /* Lambertian: diffuse/pi */
+    IL_MATERIAL_PHONG,       /* diffuse + normalised modified Phong lobe */
+    IL_MATERIAL_MIRROR,      /* perfect specular reflection, tinted by `specular` */
+    IL_MATERIAL_DIELECTRIC   /* smooth glass: Fresnel reflection + refraction */
+} il_material_type;
+
+typedef struct il_material_desc {
+    const char *name;          /* copied; may be NULL */
+    il_material_type type;
+    il_vec3 diffuse;           /* diffuse albedo (DIFFUSE, PHONG) */
+    uint32_t diffuse_texture;  /* 0: none, else a handle from il_scene_add_texture;
+                                  multiplies `diffuse` */
+    il_vec3 specular;          /* PHONG: specular albedo.  MIRROR/DIELECTRIC: tint,
+                                  zero means white */
+    float exponent;            /* PHONG: cos^n exponent; 0 means 32 */
+    float ior;                 /* DIELECTRIC: index of refraction; 0 means 1.5 */
+    il_vec3 emission;          /* emitted radiance, W/(sr m^2); zero: not an emitter */
+    bool two_sided;            /* emit from both faces */
+} il_material_desc;
+
+/* ----------------------------------------------------------------- lights */
+
+typedef enum il_light_type {
+    IL_LIGHT_POINT = 0,  /* intensity W/sr in every direction */
+    IL_LIGHT_SPOT,       /* intensity W/sr on its axis, times cos^exponent of the
+                            angle to the axis, zero beyond the cut-off angle */
+    IL_LIGHT_DIRECTIONAL /* irradiance W/m^2 on a surface facing the light */
+} il_light_type;
+
+typedef struct il_light_desc {
+    il_light_type type;
+    il_vec3 position;    /* POINT, SPOT */
+    il_vec3 direction;   /* SPOT, DIRECTIONAL: the direction light travels;
+                            zero means straight down (0,-1,0) */
+    il_vec3 intensity;   /* POINT/SPOT: W/sr; DIRECTIONAL: W/m^2 */
+    float spot_angle;    /* SPOT: cut-off half-angle in degrees; 0 means 45 */
+    float spot_exponent; /* SPOT: falloff exponent n of cos^n; 0 means none */
+} il_light_desc;
+
+/* Light from infinitely far away: the sky.  For now a constant radiance (a
+ * uniform sky); environment maps plug in here later. */
+typedef struct il_environment_desc {
+    il_vec3 radiance;    /* W/(sr m^2) arriving from every direction */
+} il_environment_desc;
+
+/* ----------------------------------------------------------------- camera */
+
+typedef struct il_camera_desc {
+    il_vec3 position;
+    il_vec3 target;      /* the point looked at */
+    il_vec3 up;          /* zero means +y */
+    float fov_y;         /* vertical field of view in degrees; 0 means 40 */
+} il_camera_desc;
+
+/* ------------------------------------------------------------------ scene */
+
+typedef struct il_scene il_scene;
+
+typedef struct il_mesh_desc {
+    const char *name;            /* copied; may be NULL */
+    uint32_t num_vertices;
+    uint32_t num_triangles;
+    const float *positions;      /* 3 floats per vertex, world space */
+    const float *normals;        /* optional: 3 floats per vertex */
+    const float *uvs;            /* optional: 2 floats per vertex */
+    const uint32_t *indices;     /* 3 per triangle, counter-clockwise = front */
+    uint32_t material;           /* index from il_scene_add_material; 0 is the
+                                    scene's default grey diffuse (albedo 0.8) */
+} il_mesh_desc;
+
+typedef struct il_load_desc {
+    il_log_fn log;               /* receives warnings while loading; may be NULL */
+    void *log_user;
+} il_load_desc;
+
+typedef struct il_scene_info {
+    uint32_t num_meshes;
+    uint64_t num_triangles;
+    uint32_t num_materials;      /* including the default material 0 */
+    uint32_t num_textures;
+    uint32_t num_lights;         /* point/spot/directional lights */
+    uint64_t num_emissive_triangles;
+    bool has_environment;
+    bool has_camera;             /* false until commit adds the default camera */
+    il_vec3 bounds_min, bounds_max;
+    uint64_t dropped_triangles;  /* NaN/Inf or degenerate, dropped on load */
+    uint32_t num_warnings;
+} il_scene_info;
+
+/* An empty scene with one default material (index 0). */
+il_status il_scene_create(il_scene **out, il_error *err);
+
+/* Loads a file (any format assimp reads, or a .json scene file; see
+ * docs/scene-format.md) or a built-in scene by name ("cornell", "atrium"). */
+il_status il_scene_load(const char *path_or_name, const il_load_desc *desc,
+                        il_scene **out, il_error *err);
+
+il_status il_scene_add_material(il_scene *scene, const il_material_desc *desc,
+                                uint32_t *out_index, il_error *err);
+/* Adds a texture of linear RGB floats (3 per texel, rows top to bottom).
+ * Handles start at 1. */
+il_status il_scene_add_texture(il_scene *scene, uint32_t width, uint32_t height,
+                               const float *rgb, uint32_t *out_handle, il_error *err);
+/* Copies the mesh.  Triangles with NaN/Inf coordinates or zero area are
+ * dropped and counted (il_scene_info.dropped_triangles). */
+il_status il_scene_add_mesh(il_scene *scene, const il_mesh_desc *desc, il_error *err);
+il_status il_scene_add_light(il_scene *scene, const il_light_desc *desc, il_error *err);
+il_status il_scene_set_camera(il_scene *scene, const il_camera_desc *desc, il_error *err);
+/* Gets the camera; returns false when the scene has none (before commit). */
+bool il_scene_get_camera(const il_scene *scene, il_camera_desc *out);
+il_status il_scene_set_environment(il_scene *scene, const il_environment_desc *desc,
+                                   il_error *err);
+
+/* Validates the scene (an error when it has no triangle or no light), adds a
+ * camera framing its bounds from +z when it has none (see docs/cli.md), builds
+ * the ray-casting structure and the light tables.  Must be called before
+ * rendering; the scene must not be changed afterwards. */
+il_status il_scene_commit(il_scene *scene, il_error *err);
+
+void il_scene_get_info(const il_scene *scene, il_scene_info *out);
+/* The i-th warning recorded while loading, or NULL. */
+const char *il_scene_warning(const il_scene *scene, uint32_t i);
+void il_scene_release(il_scene *scene);
+
+/* ------------------------------------------------------------ images, film */
+
+/* A float RGB image, 3 floats per pixel, rows top to bottom. */
+typedef struct il_image {
+    uint32_t width, height;
+    float *rgb;
+} il_image;
+
+typedef enum il_exr_precision { IL_EXR_HALF = 0, IL_EXR_FLOAT } il_exr_precision;
+
+typedef struct il_write_desc {
+    float exposure;              /* PNG only: multiply by 2^exposure before the sRGB
+                                    transfer (0 means none) */
+    il_exr_precision exr_precision;
+} il_write_desc;
+
+/* Reads PNG, JPEG (8-bit sRGB, decoded to linear), HDR (RGBE), EXR and PFM. */
+il_status il_image_read(const char *path, il_image *out, il_error *err);
+/* Writes by the file's extension: .exr .hdr .pfm .png.  The file is written to
+ * a temporary name beside it and renamed, so a failed write leaves no file. */
+il_status il_image_write(const il_image *image, const char *path,
+                         const il_write_desc *desc, il_error *err);
+il_status il_image_alloc(il_image *image, uint32_t width, uint32_t height, il_error *err);
+void il_image_free(il_image *image);
+
+typedef struct il_compare_result {
+    double rmse;            /* root mean squared error over all channels */
+    double rel_mse;         /* mean of (a-b)^2 / (b^2 + 0.01), b the reference */
+    double mean_lum_a;      /* mean Rec.709 luminance */
+    double mean_lum_b;
+    double max_abs_error;   /* largest absolute channel difference */
+} il_compare_result;
+
+/* Compares A against reference B (same size); optionally fills `diff` with the
+ * per-pixel absolute difference (allocated; free with il_image_free). */
+il_status il_image_compare(const il_image *a, const il_image *b,
+                           il_compare_result *out, il_image *diff, il_error *err);
+
+/* The accumulation film every method renders into: per pixel a sum of
+ * weighted radiance samples and a sum of weights. */
+typedef struct il_film il_film;
+il_status il_film_create(uint32_t width, uint32_t height, il_film **out, il_error *err);
+uint32_t il_film_width(const il_film *film);
+uint32_t il_film_height(const il_film *film);
+void il_film_clear(il_film *film);
+void il_film_add_sample(il_film *film, uint32_t x, uint32_t y, il_vec3 radiance, float weight);
+/* The mean radiance per pixel, into a newly allocated image. */
+il_status il_film_resolve(const il_film *film, il_image *out, il_error *err);
+void il_film_release(il_film *film);
+
+/* ------------------------------------------------------------------ render */
+
+typedef enum il_method { IL_METHOD_PT = 0 } il_method;
+typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
+typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
+
+typedef struct il_render_progress {
+    uint32_t passes_done;    /* samples per pixel completed so far */
+    uint32_t passes_total;   /* 0 when rendering for a time */
+    double seconds;          /* since the render started */
+    double time_limit;       /* 0 when rendering a sample count */
+    uint64_t rays;           /* rays cast so far */
+    const il_film *film;     /* complete after every pass: it may be written */
+} il_render_progress;
+
+/* Called on the calling thread after every pass; return false to stop. */
+typedef bool (*il_progress_fn)(const il_render_progress *progress, void *user);
+
+typedef struct il_render_desc {
+    il_method method;
+    uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
+                                time_limit is set */
+    double time_limit;       /* seconds; 0 means none */
+    uint32_t max_depth;      /* longest path in segments; 0 means 8 */
+    uint64_t seed;
+    int threads;             /* 0 means all cores */
+    il_sampler_type sampler;
+    il_filter_type filter;
+    il_progress_fn progress;
+    void *progress_user;
+} il_render_desc;
+
+typedef struct il_render_stats {
+    uint32_t spp;            /* samples per pixel rendered */
+    uint64_t rays;           /* all rays cast, camera + bounce + shadow */
+    double seconds;
+} il_render_stats;
+
+/* Renders the committed scene through its camera into the film (which is
+ * cleared first).  The same seed gives a bit-identical film whatever the
+ * thread count. */
+il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                    il_render_stats *stats, il_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* ILLUM_H */

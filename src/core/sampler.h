@@ -1,0 +1,26 @@
+/* Per-pixel sample streams.  Sobol: Burley 2020, "Practical Hash-based Owen
+ * Scrambling" (JCGT 9(4)): Owen-scrambled, shuffled (0,2)-sequence in pairs of
+ * dimensions.  PCG: independent uniform numbers.  Both depend only on
+ * (seed, pixel, sample index), never on the thread, for determinism. */
+#ifndef IL_CORE_SAMPLER_H
+#define IL_CORE_SAMPLER_H
+
+#include <stdint.h>
+#include "core/rng.h"
+#include "core/vec.h"
+
+typedef struct il_sampler {
+    il_sampler_type type;
+    uint64_t seed;
+    uint64_t pixel;
+    uint32_t index;       /* sample index within the pixel */
+    uint32_t dim;         /* next dimension */
+    il_pcg32 rng;
+} il_sampler;
+
+void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64_t pixel,
+                      uint32_t sample_index);
+float il_sampler_1d(il_sampler *s);
+il_vec2 il_sampler_2d(il_sampler *s);
+
+#endif

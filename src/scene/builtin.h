@@ -1,0 +1,20 @@
+/* Built-in scenes, selectable by name with no file. */
+#ifndef IL_SCENE_BUILTIN_H
+#define IL_SCENE_BUILTIN_H
+
+#include <stdbool.h>
+#include "illum/illum.h"
+
+/* True when `name` is a built-in scene ("cornell", "atrium"). */
+bool il_builtin_exists(const char *name);
+/* Fills an empty scene with the built-in scene of that name. */
+il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
+
+/* The Cornell box from the published measurements, in metres, reflectances
+ * and light spectrum converted to linear Rec.709 through the CIE 1931
+ * colour-matching functions, with the published camera. */
+il_status il_builtin_cornell(il_scene *scene, il_error *err);
+/* A two-storey arcaded courtyard, about 250,000 triangles, sun + lamps. */
+il_status il_builtin_atrium(il_scene *scene, il_error *err);
+
+#endif

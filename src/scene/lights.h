@@ -1,0 +1,43 @@
+/* The light table of a committed scene: point, spot, directional, emissive
+ * triangles and the environment, selected in proportion to their power. */
+#ifndef IL_SCENE_LIGHTS_H
+#define IL_SCENE_LIGHTS_H
+
+#include <stdbool.h>
+#include "core/vec.h"
+#include "scene/scene.h"
+
+typedef struct il_light_sample {
+    il_vec3 wi;            /* unit, from the shading point to the light */
+    float dist;            /* to the light point; INFINITY for directional/environment */
+    il_vec3 p;             /* the point on the light (finite lights) */
+    il_vec3 n;             /* the light's surface normal (area lights), else zero */
+    il_vec3 radiance;      /* arriving radiance (delta lights: intensity/dist^2 or irradiance) */
+    float pdf;             /* solid angle, including the selection probability;
+                              for delta lights just the selection probability */
+    bool delta;            /* point, spot, directional: no MIS */
+    uint32_t light;        /* index into scene->lights */
+} il_light_sample;
+
+/* Builds scene->lights, the selection CDF and the triangle->light map.  Called
+ * by il_scene_commit after the bounds are known.  An error when no light. */
+il_status il_lights_build(il_scene *scene, il_error *err);
+void il_lights_free(il_scene *scene);
+
+/* Samples a light seen from point p: u_select picks the light, u a point on it. */
+bool il_light_sample_at(const il_scene *scene, il_vec3 p, float u_select, il_vec2 u,
+                        il_light_sample *out);
+
+/* Solid-angle pdf of il_light_sample_at choosing the point p_light (normal
+ * n_light) on area light `light` from p: used for MIS when a BSDF ray hits an emitter. */
+float il_light_pdf_area(const il_scene *scene, uint32_t light, il_vec3 p, il_vec3 p_light,
+                        il_vec3 n_light);
+/* Solid-angle pdf of sampling direction dir towards the environment. */
+float il_light_pdf_environment(const il_scene *scene, il_vec3 dir);
+
+/* Radiance leaving an emissive surface with geometric normal ng towards w. */
+il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w);
+/* Radiance arriving from the environment along direction -dir (dir points away from the scene). */
+il_vec3 il_environment_radiance(const il_scene *scene, il_vec3 dir);
+
+#endif

@@ -1,0 +1,124 @@
+/* The in-memory scene: what loaders fill and what every method reads.
+ * Everything is in world space and validated on the way in (il_scene_add_*).
+ * After il_scene_commit the scene is read-only and also holds the ray-casting
+ * structure and the light tables. */
+#ifndef IL_SCENE_SCENE_H
+#define IL_SCENE_SCENE_H
+
+#include <stdint.h>
+#include "core/vec.h"
+#include "illum/illum.h"
+
+#define IL_NAME_MAX 64
+#define IL_NO_LIGHT UINT32_MAX
+
+typedef struct il_tracer il_tracer;
+
+typedef struct il_mesh {
+    char name[IL_NAME_MAX];
+    uint32_t num_vertices;
+    uint32_t num_triangles;
+    il_vec3 *positions;
+    il_vec3 *normals;      /* NULL: flat shading with the geometric normal */
+    il_vec2 *uvs;          /* NULL: no texture coordinates */
+    uint32_t *indices;     /* 3 per triangle */
+    uint32_t material;
+} il_mesh;
+
+typedef struct il_texture {
+    uint32_t width, height;
+    float *rgb;            /* linear RGB, rows top to bottom */
+} il_texture;
+
+typedef struct il_material {
+    char name[IL_NAME_MAX];
+    il_material_type type;
+    il_vec3 diffuse;
+    uint32_t diffuse_texture;  /* 0: none; else index+1 into scene->textures */
+    il_vec3 specular;          /* defaults resolved: MIRROR/DIELECTRIC tint is white when given as zero */
+    float exponent;            /* resolved: never 0 for PHONG */
+    float ior;                 /* resolved: never 0 */
+    il_vec3 emission;
+    bool two_sided;
+} il_material;
+
+/* Every light the integrators sample, one table: the user's point, spot and
+ * directional lights, one entry per emissive triangle, and the environment. */
+typedef enum il_light_kind {
+    IL_LIGHTK_POINT = 0,
+    IL_LIGHTK_SPOT,
+    IL_LIGHTK_DIRECTIONAL,
+    IL_LIGHTK_AREA,        /* one emissive triangle */
+    IL_LIGHTK_ENVIRONMENT
+} il_light_kind;
+
+typedef struct il_light {
+    il_light_kind kind;
+    il_vec3 position;      /* POINT, SPOT */
+    il_vec3 direction;     /* SPOT, DIRECTIONAL: unit, the way light travels */
+    il_vec3 intensity;     /* POINT/SPOT W/sr; DIRECTIONAL W/m^2 */
+    float cos_cutoff;      /* SPOT: cos of the cut-off half-angle */
+    float spot_exponent;   /* SPOT */
+    uint32_t mesh, prim;   /* AREA: the triangle */
+    float area;            /* AREA: the triangle's area */
+    il_vec3 radiance;      /* AREA, ENVIRONMENT: emitted radiance */
+    bool two_sided;        /* AREA */
+    float power;           /* total emitted power (luminance-weighted), for selection */
+} il_light;
+
+typedef struct il_scene_camera {
+    il_camera_desc desc;   /* defaults resolved */
+    bool present;
+} il_scene_camera;
+
+struct il_scene {
+    il_mesh *meshes;        uint32_t num_meshes, cap_meshes;
+    il_material *materials; uint32_t num_materials, cap_materials;
+    il_texture *textures;   uint32_t num_textures, cap_textures;
+    il_light_desc *user_lights; uint32_t num_user_lights, cap_user_lights;
+    il_scene_camera camera;
+    il_environment_desc environment;
+    bool has_environment;
+
+    char **warnings;        uint32_t num_warnings, cap_warnings;
+    uint64_t dropped_triangles;
+    il_log_fn log;          /* receives every warning as it is recorded */
+    void *log_user;
+
+    /* Filled by il_scene_commit. */
+    bool committed;
+    il_vec3 bounds_min, bounds_max;
+    float scene_radius;              /* of the bounding sphere */
+    il_vec3 scene_center;
+    il_tracer *tracer;
+    il_light *lights;       uint32_t num_lights;
+    float *light_cdf;                /* num_lights+1 entries, selection by power */
+    float *light_pmf;                /* num_lights entries */
+    uint32_t **triangle_light;       /* per mesh, per triangle: index into lights or IL_NO_LIGHT */
+    uint32_t environment_light;      /* index into lights or IL_NO_LIGHT */
+};
+
+/* Records a warning (printf format): stored for `illum info` and passed to the log callback. */
+void il_scene_warn(il_scene *scene, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Surface attributes at a hit: position, normals, uv, the material. */
+typedef struct il_surface {
+    il_vec3 p;
+    il_vec3 ng;            /* geometric normal, unit; turned to the side of the vertex normals when the mesh has them */
+    il_vec3 ns;            /* shading normal, unit (ng when the mesh has no normals) */
+    il_vec2 uv;
+    uint32_t mesh, prim;
+    const il_material *material;
+} il_surface;
+
+/* Fills the surface attributes of triangle (mesh, prim) at barycentrics (b1, b2). */
+void il_scene_surface(const il_scene *scene, uint32_t mesh, uint32_t prim, float b1, float b2,
+                      il_surface *out);
+
+/* The diffuse albedo at a surface point (texture times colour). */
+il_vec3 il_material_diffuse(const il_scene *scene, const il_material *m, il_vec2 uv);
+
+/* Texture lookup, bilinear, wrapping. */
+il_vec3 il_texture_sample(const il_texture *tex, il_vec2 uv);
+
+#endif

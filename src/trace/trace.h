@@ -1,0 +1,58 @@
+/* Ray casting: the only place that knows about Embree.  Closest hit and
+ * occlusion, for one ray and for streams of rays. */
+#ifndef IL_TRACE_TRACE_H
+#define IL_TRACE_TRACE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "core/vec.h"
+
+typedef struct il_scene il_scene;
+typedef struct il_tracer il_tracer;
+
+typedef struct il_ray {
+    il_vec3 org;
+    float tmin;
+    il_vec3 dir;           /* need not be unit length; t is in units of |dir| */
+    float tmax;
+} il_ray;
+
+typedef struct il_hit {
+    float t;
+    uint32_t mesh;         /* UINT32_MAX: no hit */
+    uint32_t prim;
+    float b1, b2;          /* barycentrics of vertices 1 and 2 */
+    il_vec3 ng;            /* unnormalised geometric normal, as Embree gives it */
+} il_hit;
+
+#define IL_HIT_NONE UINT32_MAX
+
+/* Builds the BVH over the scene's meshes (each mesh one Embree geometry, its
+ * index the geometry id).  Threads: Embree's own. */
+il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err);
+void il_tracer_release(il_tracer *tracer);
+
+/* Returns true and fills hit when the ray hits something in [tmin, tmax]. */
+bool il_trace_closest(const il_tracer *tracer, const il_ray *ray, il_hit *hit);
+/* True when anything blocks the ray in [tmin, tmax]. */
+bool il_trace_occluded(const il_tracer *tracer, const il_ray *ray);
+
+/* Streams: n independent rays at once (Embree's rtcIntersect1M/rtcOccluded1M),
+ * cheaper per ray for coherent batches. */
+void il_trace_closest_n(const il_tracer *tracer, const il_ray *rays, il_hit *hits, size_t n);
+void il_trace_occluded_n(const il_tracer *tracer, const il_ray *rays, bool *occluded, size_t n);
+
+/* The distance by which secondary rays leave a surface: scaled to the scene
+ * (a fixed fraction of its extent) so millimetre and metre scenes behave alike. */
+float il_trace_epsilon(const il_tracer *tracer);
+
+/* A ray origin lifted off the surface at p (geometric normal ng) to the side
+ * that `dir` points to, so the ray does not hit its own triangle. */
+il_vec3 il_offset_origin(const il_tracer *tracer, il_vec3 p, il_vec3 ng, il_vec3 dir);
+
+/* A shadow ray from p (lifted as above) to the point q (lifted the other way
+ * when nq is not zero); tmax stops just short of q. */
+il_ray il_shadow_ray(const il_tracer *tracer, il_vec3 p, il_vec3 ng, il_vec3 q, il_vec3 nq);
+
+#endif
