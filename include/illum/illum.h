@@ -194,6 +194,22 @@ il_status il_scene_set_environment(il_scene *scene, const il_environment_desc *d
  * rendering; the scene must not be changed afterwards. */
 il_status il_scene_commit(il_scene *scene, il_error *err);
 
+/* Render settings a scene file asked for (the "render" block of a JSON scene,
+ * docs/scene-format.md); a zero field or an empty method means "not set", so
+ * the caller's own default or command-line option applies. */
+typedef struct il_render_settings {
+    uint32_t width, height;
+    uint32_t spp;
+    uint32_t max_depth;
+    uint64_t seed;
+    double time_limit;           /* seconds */
+    char method[32];             /* e.g. "pt" */
+} il_render_settings;
+
+/* Gets the scene file's render settings; returns false (and zeroes `out`)
+ * when it set none. */
+bool il_scene_get_render_settings(const il_scene *scene, il_render_settings *out);
+
 void il_scene_get_info(const il_scene *scene, il_scene_info *out);
 /* The i-th warning recorded while loading, or NULL. */
 const char *il_scene_warning(const il_scene *scene, uint32_t i);
@@ -285,6 +301,7 @@ typedef struct il_render_stats {
     uint32_t spp;            /* samples per pixel rendered */
     uint64_t rays;           /* all rays cast, camera + bounce + shadow */
     double seconds;
+    uint64_t nonfinite_samples; /* samples dropped because they were NaN or Inf */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is

@@ -1,3 +1,56 @@
+/* The `illum` program: dispatches to one file per sub-command. */
 #include <stdio.h>
-#include "illum/illum.h"
-int main(void) { puts("illum " IL_VERSION_STRING); return 0; }
+#include <string.h>
+
+#include "cli/cli.h"
+
+static const char *usage =
+    "illum " IL_VERSION_STRING " - global illumination\n"
+    "\n"
+    "usage: illum COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE [options]   render a scene file or a built-in scene to an image\n"
+    "  info SCENE               print what a scene contains\n"
+    "  compare A B [--diff D]   compare two images (RMSE, relative MSE, luminance)\n"
+    "\n"
+    "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
+    "scene file (docs/scene-format.md) or a built-in name: cornell, atrium.\n"
+    "'illum COMMAND --help' lists a command's options.\n"
+    "\n"
+    "exit status: 0 success, 1 bad input (scene, file, option value), 2 usage error,\n"
+    "             3 runtime failure, 4 compare: images differ more than allowed,\n"
+    "             130 interrupted (the image rendered so far is written)\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        cli_error("no command given");
+        fputs(usage, stderr);
+        return IL_EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        if (argc >= 3 && strcmp(cmd, "help") == 0) {
+            char help[] = "--help";
+            char *sub[] = {argv[2], help, NULL};
+            if (!strcmp(argv[2], "render")) return cmd_render(2, sub);
+            if (!strcmp(argv[2], "info")) return cmd_info(2, sub);
+            if (!strcmp(argv[2], "compare")) return cmd_compare(2, sub);
+        }
+        fputs(usage, stdout);
+        return IL_EXIT_OK;
+    }
+    if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
+        puts("illum " IL_VERSION_STRING);
+        return IL_EXIT_OK;
+    }
+    if (!strcmp(cmd, "render"))
+        return cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "info"))
+        return cmd_info(argc - 1, argv + 1);
+    if (!strcmp(cmd, "compare"))
+        return cmd_compare(argc - 1, argv + 1);
+    cli_error("unknown command '%s' (try 'illum --help')", cmd);
+    return IL_EXIT_USAGE;
+}

@@ -23,4 +23,8 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
 float il_sampler_1d(il_sampler *s);
 il_vec2 il_sampler_2d(il_sampler *s);
 
+/* Point `index` of the plain, unscrambled (0,2)-sequence (Sobol dimensions 0
+ * and 1), for tests of its stratification. */
+il_vec2 il_sobol02(uint32_t index);
+
 #endif

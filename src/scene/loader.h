@@ -2,6 +2,7 @@
 #ifndef IL_SCENE_LOADER_H
 #define IL_SCENE_LOADER_H
 
+#include <stddef.h>
 #include "illum/illum.h"
 
 /* Any format assimp reads (OBJ+MTL, glTF/GLB, PLY, 3DS, ...), into an existing scene.
@@ -12,5 +13,49 @@ il_status il_load_assimp(il_scene *scene, const char *path, const float *transfo
                          uint32_t material_override, il_error *err);
 /* A JSON scene file (docs/scene-format.md). */
 il_status il_load_json(il_scene *scene, const char *path, il_error *err);
+
+/* Looks up a replacement for a file's material by its name: a scene material
+ * index, or 0 to convert the file's own material. */
+typedef uint32_t (*il_material_lookup_fn)(const char *name, void *user);
+
+typedef struct il_assimp_options {
+    const float *transform;            /* column-major 4x4; NULL: identity */
+    uint32_t material_override;        /* 0: none, else replaces every material */
+    il_material_lookup_fn lookup;      /* optional, asked per file material */
+    void *lookup_user;
+} il_assimp_options;
+
+/* il_load_assimp with every option; `opt` may be NULL. */
+il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_options *opt,
+                            il_error *err);
+
+/* Reads a whole file into a NUL-terminated buffer (free() it); IL_ERR_IO naming
+ * the file when it cannot be read. */
+il_status il_load_read_file(const char *path, char **out, size_t *size, il_error *err);
+
+/* Adds a mesh after applying x to its positions and normals (normals by the
+ * inverse transpose); a mirroring x (negative determinant) also reverses the
+ * winding so the front face stays the front. */
+struct il_xform;
+il_status il_load_add_mesh(il_scene *scene, const il_mesh_desc *d, const struct il_xform *x,
+                           il_error *err);
+
+/* Simple shapes for JSON scenes (load_shapes.c), centred at the origin,
+ * counter-clockwise seen from outside.  Arrays are malloc'ed: il_shape_free. */
+typedef struct il_shape_mesh {
+    uint32_t num_vertices, num_triangles;
+    float *positions, *normals, *uvs; /* normals NULL for flat shapes */
+    uint32_t *indices;
+} il_shape_mesh;
+
+/* A quad in the xz-plane, sx by sz, facing +y. */
+il_status il_shape_quad(float sx, float sz, il_shape_mesh *out, il_error *err);
+/* An axis-aligned box sx by sy by sz, faces outward, flat. */
+il_status il_shape_box(float sx, float sy, float sz, il_shape_mesh *out, il_error *err);
+/* A UV sphere: `segments` around the equator (>= 3), segments/2 rings, smooth normals. */
+il_status il_shape_sphere(float radius, uint32_t segments, il_shape_mesh *out, il_error *err);
+/* Reverses every triangle and normal (faces inward). */
+void il_shape_flip(il_shape_mesh *m);
+void il_shape_free(il_shape_mesh *m);
 
 #endif

@@ -82,6 +82,8 @@ struct il_scene {
 
     char **warnings;        uint32_t num_warnings, cap_warnings;
     uint64_t dropped_triangles;
+    il_render_settings render_settings; /* from a JSON scene's "render" block (load_json.c) */
+    bool has_render_settings;
     il_log_fn log;          /* receives every warning as it is recorded */
     void *log_user;
 

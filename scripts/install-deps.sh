@@ -1,0 +1,9 @@
+#!/bin/sh
+# Installs what illum builds with, from Debian 12's own packages (run as root).
+# The README's first command and CI (.ci/run) both call this script.
+set -eu
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends \
+    build-essential cmake pkg-config \
+    libembree-dev libassimp-dev libopenexr-dev libstb-dev libcjson-dev >/dev/null

@@ -1,0 +1,160 @@
+#include "cli/cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("illum: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+bool cli_parse_u32(const char *opt, const char *s, uint32_t min, uint32_t max, uint32_t *out)
+{
+    char *end = NULL;
+    errno = 0;
+    long long v = strtoll(s, &end, 10);
+    if (errno || end == s || *end != '\0' || v < (long long)min || v > (long long)max) {
+        cli_error("%s: expected a whole number from %u to %u, got '%s'", opt, min, max, s);
+        return false;
+    }
+    *out = (uint32_t)v;
+    return true;
+}
+
+bool cli_parse_u64(const char *opt, const char *s, uint64_t *out)
+{
+    char *end = NULL;
+    errno = 0;
+    if (s[0] == '-') {
+        cli_error("%s: expected a non-negative whole number, got '%s'", opt, s);
+        return false;
+    }
+    unsigned long long v = strtoull(s, &end, 10);
+    if (errno || end == s || *end != '\0') {
+        cli_error("%s: expected a non-negative whole number, got '%s'", opt, s);
+        return false;
+    }
+    *out = (uint64_t)v;
+    return true;
+}
+
+bool cli_parse_double(const char *opt, const char *s, double min, double max, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end != '\0' || !isfinite(v) || v < min || v > max) {
+        cli_error("%s: expected a number from %g to %g, got '%s'", opt, min, max, s);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out)
+{
+    float v[3];
+    const char *p = s;
+    for (int k = 0; k < 3; k++) {
+        char *end = NULL;
+        errno = 0;
+        double d = strtod(p, &end);
+        if (errno || end == p || !isfinite(d) || (k < 2 && *end != ',') || (k == 2 && *end != '\0')) {
+            cli_error("%s: expected three numbers X,Y,Z, got '%s'", opt, s);
+            return false;
+        }
+        v[k] = (float)d;
+        p = end + 1;
+    }
+    *out = (il_vec3){v[0], v[1], v[2]};
+    return true;
+}
+
+const char *cli_value(int argc, char **argv, int *i)
+{
+    if (*i + 1 >= argc) {
+        cli_error("%s needs a value (see --help)", argv[*i]);
+        return NULL;
+    }
+    (*i)++;
+    return argv[*i];
+}
+
+void cli_log(il_log_level level, const char *message, void *user)
+{
+    bool quiet = user && *(const bool *)user;
+    if (level == IL_LOG_WARNING && !quiet)
+        fprintf(stderr, "illum: warning: %s\n", message);
+}
+
+int cli_exit_for(il_status st)
+{
+    switch (st) {
+    case IL_OK: return IL_EXIT_OK;
+    case IL_ERR_IO:
+    case IL_ERR_FORMAT:
+    case IL_ERR_INVALID: return IL_EXIT_BAD_INPUT;
+    case IL_ERR_CANCELLED: return IL_EXIT_INTERRUPTED;
+    case IL_ERR_MEMORY:
+    case IL_ERR_RUNTIME: return IL_EXIT_RUNTIME;
+    }
+    return IL_EXIT_RUNTIME;
+}
+
+bool cli_write_text_atomic(const char *path, const char *text)
+{
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 16);
+    if (!tmp)
+        return false;
+    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0) {
+        cli_error("%s: cannot write: %s", path, strerror(errno));
+        free(tmp);
+        return false;
+    }
+    FILE *f = fdopen(fd, "w");
+    bool ok = f && fputs(text, f) >= 0;
+    if (f)
+        ok = (fclose(f) == 0) && ok;
+    else
+        close(fd);
+    if (ok && rename(tmp, path) != 0)
+        ok = false;
+    if (!ok) {
+        cli_error("%s: cannot write: %s", path, strerror(errno));
+        unlink(tmp);
+    }
+    free(tmp);
+    return ok;
+}
+
+int cli_load_scene(const char *path, bool quiet, il_scene **out)
+{
+    static bool quiet_flag;
+    quiet_flag = quiet;
+    il_error err = {0};
+    il_load_desc ld = {.log = cli_log, .log_user = &quiet_flag};
+    il_status st = il_scene_load(path, &ld, out, &err);
+    if (st == IL_OK)
+        st = il_scene_commit(*out, &err);
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        il_scene_release(*out);
+        *out = NULL;
+        return cli_exit_for(st);
+    }
+    return IL_EXIT_OK;
+}

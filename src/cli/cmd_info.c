@@ -1,0 +1,68 @@
+/* `illum info SCENE`: what was loaded. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+static const char *help =
+    "usage: illum info SCENE [--quiet]\n"
+    "\n"
+    "Loads SCENE (a file or a built-in name), validates it and prints the counts\n"
+    "of meshes, triangles, materials, lights, the bounds, the camera and every\n"
+    "warning raised while loading.\n";
+
+int cmd_info(int argc, char **argv)
+{
+    const char *path = NULL;
+    bool quiet = false;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(help, stdout);
+            return IL_EXIT_OK;
+        } else if (!strcmp(argv[i], "--quiet")) {
+            quiet = true;
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            cli_error("info: unknown option '%s' (see 'illum info --help')", argv[i]);
+            return IL_EXIT_USAGE;
+        } else if (!path) {
+            path = argv[i];
+        } else {
+            cli_error("info: one scene at a time ('%s' is extra)", argv[i]);
+            return IL_EXIT_USAGE;
+        }
+    }
+    if (!path) {
+        cli_error("info: no scene given (see 'illum info --help')");
+        return IL_EXIT_USAGE;
+    }
+    il_scene *scene = NULL;
+    /* Warnings are listed below, so the loader need not print them too. */
+    int rc = cli_load_scene(path, true, &scene);
+    if (rc != IL_EXIT_OK)
+        return rc;
+    (void)quiet;
+    il_scene_info in;
+    il_scene_get_info(scene, &in);
+    il_camera_desc cam;
+    il_scene_get_camera(scene, &cam);
+    printf("scene:      %s\n", path);
+    printf("meshes:     %u\n", in.num_meshes);
+    printf("triangles:  %llu (%llu emissive, %llu dropped)\n", (unsigned long long)in.num_triangles,
+           (unsigned long long)in.num_emissive_triangles, (unsigned long long)in.dropped_triangles);
+    printf("materials:  %u (including the default)\n", in.num_materials);
+    printf("textures:   %u\n", in.num_textures);
+    printf("lights:     %u point/spot/directional, %llu emissive triangles%s\n", in.num_lights,
+           (unsigned long long)in.num_emissive_triangles, in.has_environment ? ", environment" : "");
+    printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", (double)in.bounds_min.x,
+           (double)in.bounds_min.y, (double)in.bounds_min.z, (double)in.bounds_max.x,
+           (double)in.bounds_max.y, (double)in.bounds_max.z);
+    printf("camera:     position (%g, %g, %g) target (%g, %g, %g) up (%g, %g, %g) fov %g\n",
+           (double)cam.position.x, (double)cam.position.y, (double)cam.position.z,
+           (double)cam.target.x, (double)cam.target.y, (double)cam.target.z, (double)cam.up.x,
+           (double)cam.up.y, (double)cam.up.z, (double)cam.fov_y);
+    printf("warnings:   %u\n", in.num_warnings);
+    for (uint32_t i = 0; i < in.num_warnings; i++)
+        printf("  warning: %s\n", il_scene_warning(scene, i));
+    il_scene_release(scene);
+    return IL_EXIT_OK;
+}

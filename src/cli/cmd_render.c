@@ -1,0 +1,508 @@
+/* `illum render SCENE`: load, render progressively, write images and stats. */
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cjson/cJSON.h>
+
+#include "cli/cli.h"
+
+static const char *help =
+    "usage: illum render SCENE [options]\n"
+    "\n"
+    "Renders SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
+    "atrium) through its camera and writes the image(s).\n"
+    "\n"
+    "  --method pt            rendering method (pt: path tracing, the default)\n"
+    "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
+    "  --time SECONDS         render passes until SECONDS have passed\n"
+    "  --width W --height H   image size in pixels (default 512 x 512)\n"
+    "  --max-depth D          longest light path in segments (default 8)\n"
+    "  --seed S               random seed (default 0); same seed, same image\n"
+    "  --threads T            worker threads (default: all cores)\n"
+    "  --sampler sobol|pcg    sample sequence (default sobol: Owen-scrambled Sobol)\n"
+    "  --filter box|gaussian  pixel filter (default box)\n"
+    "  --camera-pos X,Y,Z --camera-target X,Y,Z --camera-up X,Y,Z --fov DEGREES\n"
+    "                         override the scene's camera (fov is vertical)\n"
+    "  --camera-file FILE     camera from a JSON file {\"position\":[..],\"target\":[..],\n"
+    "                         \"up\":[..],\"fov\":deg}\n"
+    "  -o, --output FILE      output image, by extension: .exr .hdr .pfm .png; may be\n"
+    "                         given more than once (default SCENE-NAME.exr)\n"
+    "  --exr-float            write EXR as 32-bit float (default half)\n"
+    "  --exposure EV          PNG only: scale by 2^EV before the sRGB transfer\n"
+    "  --stats FILE           write render statistics as JSON\n"
+    "  --quiet                no progress bar and no warnings\n"
+    "\n"
+    "While rendering, a progress bar with ETA and rays/s is drawn on stderr when it\n"
+    "is a terminal.  Ctrl-C stops after the current pass and writes what is done.\n";
+
+#define MAX_OUTPUTS 8
+
+typedef struct render_options {
+    const char *scene;
+    const char *outputs[MAX_OUTPUTS];
+    int num_outputs;
+    const char *stats;
+    const char *camera_file;
+    uint32_t width, height;
+    il_render_desc desc;
+    il_write_desc write;
+    bool quiet;
+    bool has_pos, has_target, has_up, has_fov, has_seed;
+    il_vec3 cam_pos, cam_target, cam_up;
+    double fov;
+} render_options;
+
+static volatile sig_atomic_t interrupted = 0;
+static void on_sigint(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct progress_state {
+    bool draw;
+    bool drawn;
+} progress_state;
+
+static bool on_progress(const il_render_progress *p, void *user)
+{
+    progress_state *ps = user;
+    if (ps->draw) {
+        double frac = p->passes_total ? (double)p->passes_done / p->passes_total : 0.0;
+        if (p->time_limit > 0.0) {
+            double tf = p->seconds / p->time_limit;
+            frac = frac > tf ? frac : tf;
+        }
+        if (frac > 1.0)
+            frac = 1.0;
+        double eta = frac > 0.0 ? p->seconds * (1.0 - frac) / frac : 0.0;
+        double mrays = p->seconds > 0.0 ? (double)p->rays / p->seconds * 1e-6 : 0.0;
+        char bar[31];
+        int filled = (int)(frac * 30.0);
+        for (int i = 0; i < 30; i++)
+            bar[i] = i < filled ? '#' : '.';
+        bar[30] = '\0';
+        fprintf(stderr, "\r[%s] %3d%%  %u spp  %.1fs  ETA %.1fs  %.2f Mrays/s   ", bar,
+                (int)(frac * 100.0), p->passes_done, p->seconds, eta, mrays);
+        fflush(stderr);
+        ps->drawn = true;
+    }
+    return !interrupted;
+}
+
+static bool known_image_extension(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    if (!dot)
+        return false;
+    return !strcasecmp(dot, ".exr") || !strcasecmp(dot, ".hdr") || !strcasecmp(dot, ".pfm") ||
+           !strcasecmp(dot, ".png");
+}
+
+static bool read_vec3(const cJSON *obj, const char *key, il_vec3 *out, bool *has, const char *file)
+{
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(obj, key);
+    if (!a)
+        return true;
+    if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3) {
+        cli_error("%s: \"%s\" must be an array of three numbers", file, key);
+        return false;
+    }
+    float v[3];
+    for (int k = 0; k < 3; k++) {
+        const cJSON *e = cJSON_GetArrayItem(a, k);
+        if (!cJSON_IsNumber(e)) {
+            cli_error("%s: \"%s\" must be an array of three numbers", file, key);
+            return false;
+        }
+        v[k] = (float)e->valuedouble;
+    }
+    *out = (il_vec3){v[0], v[1], v[2]};
+    *has = true;
+    return true;
+}
+
+/* Fills the camera overrides from a camera JSON file (command-line options win). */
+static int read_camera_file(render_options *o)
+{
+    FILE *f = fopen(o->camera_file, "rb");
+    if (!f) {
+        cli_error("%s: cannot open the camera file", o->camera_file);
+        return IL_EXIT_BAD_INPUT;
+    }
+    char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    cJSON *root = cJSON_Parse(buf);
+    if (!root || !cJSON_IsObject(root)) {
+        cli_error("%s: not a JSON object", o->camera_file);
+        cJSON_Delete(root);
+        return IL_EXIT_BAD_INPUT;
+    }
+    render_options file = {0};
+    bool ok = read_vec3(root, "position", &file.cam_pos, &file.has_pos, o->camera_file) &&
+              read_vec3(root, "target", &file.cam_target, &file.has_target, o->camera_file) &&
+              read_vec3(root, "up", &file.cam_up, &file.has_up, o->camera_file);
+    const cJSON *fov = cJSON_GetObjectItemCaseSensitive(root, "fov");
+    if (ok && fov) {
+        if (!cJSON_IsNumber(fov)) {
+            cli_error("%s: \"fov\" must be a number", o->camera_file);
+            ok = false;
+        } else {
+            file.fov = fov->valuedouble;
+            file.has_fov = true;
+        }
+    }
+    cJSON_Delete(root);
+    if (!ok)
+        return IL_EXIT_BAD_INPUT;
+    if (!o->has_pos && file.has_pos) { o->cam_pos = file.cam_pos; o->has_pos = true; }
+    if (!o->has_target && file.has_target) { o->cam_target = file.cam_target; o->has_target = true; }
+    if (!o->has_up && file.has_up) { o->cam_up = file.cam_up; o->has_up = true; }
+    if (!o->has_fov && file.has_fov) { o->fov = file.fov; o->has_fov = true; }
+    return IL_EXIT_OK;
+}
+
+static int parse_options(int argc, char **argv, render_options *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = NULL;
+#define VALUE()                                   \
+    do {                                          \
+        if (!(v = cli_value(argc, argv, &i)))     \
+            return IL_EXIT_USAGE;                 \
+    } while (0)
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            return -1;
+        } else if (!strcmp(a, "--method")) {
+            VALUE();
+            if (strcmp(v, "pt") != 0) {
+                cli_error("--method: unknown method '%s' (available: pt)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+            o->desc.method = IL_METHOD_PT;
+        } else if (!strcmp(a, "--spp")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 1u << 24, &o->desc.spp))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--time")) {
+            VALUE();
+            if (!cli_parse_double(a, v, 1e-3, 1e7, &o->desc.time_limit))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--width")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 16384, &o->width))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--height")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 16384, &o->height))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--max-depth")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--seed")) {
+            VALUE();
+            if (!cli_parse_u64(a, v, &o->desc.seed))
+                return IL_EXIT_BAD_INPUT;
+            o->has_seed = true;
+        } else if (!strcmp(a, "--threads")) {
+            VALUE();
+            uint32_t t;
+            if (!cli_parse_u32(a, v, 1, 1024, &t))
+                return IL_EXIT_BAD_INPUT;
+            o->desc.threads = (int)t;
+        } else if (!strcmp(a, "--sampler")) {
+            VALUE();
+            if (!strcmp(v, "sobol"))
+                o->desc.sampler = IL_SAMPLER_SOBOL;
+            else if (!strcmp(v, "pcg"))
+                o->desc.sampler = IL_SAMPLER_PCG;
+            else {
+                cli_error("--sampler: expected sobol or pcg, got '%s'", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+        } else if (!strcmp(a, "--filter")) {
+            VALUE();
+            if (!strcmp(v, "box"))
+                o->desc.filter = IL_FILTER_BOX;
+            else if (!strcmp(v, "gaussian"))
+                o->desc.filter = IL_FILTER_GAUSSIAN;
+            else {
+                cli_error("--filter: expected box or gaussian, got '%s'", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+        } else if (!strcmp(a, "--camera-pos")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->cam_pos))
+                return IL_EXIT_BAD_INPUT;
+            o->has_pos = true;
+        } else if (!strcmp(a, "--camera-target")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->cam_target))
+                return IL_EXIT_BAD_INPUT;
+            o->has_target = true;
+        } else if (!strcmp(a, "--camera-up")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->cam_up))
+                return IL_EXIT_BAD_INPUT;
+            o->has_up = true;
+        } else if (!strcmp(a, "--fov")) {
+            VALUE();
+            if (!cli_parse_double(a, v, 0.01, 179.0, &o->fov))
+                return IL_EXIT_BAD_INPUT;
+            o->has_fov = true;
+        } else if (!strcmp(a, "--camera-file")) {
+            VALUE();
+            o->camera_file = v;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            VALUE();
+            if (o->num_outputs == MAX_OUTPUTS) {
+                cli_error("at most %d outputs", MAX_OUTPUTS);
+                return IL_EXIT_USAGE;
+            }
+            if (!known_image_extension(v)) {
+                cli_error("%s: unknown image format (use .exr, .hdr, .pfm or .png)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+            o->outputs[o->num_outputs++] = v;
+        } else if (!strcmp(a, "--exr-float")) {
+            o->write.exr_precision = IL_EXR_FLOAT;
+        } else if (!strcmp(a, "--exposure")) {
+            VALUE();
+            double ev;
+            if (!cli_parse_double(a, v, -50.0, 50.0, &ev))
+                return IL_EXIT_BAD_INPUT;
+            o->write.exposure = (float)ev;
+        } else if (!strcmp(a, "--stats")) {
+            VALUE();
+            o->stats = v;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o->quiet = true;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            cli_error("render: unknown option '%s' (see 'illum render --help')", a);
+            return IL_EXIT_USAGE;
+        } else if (!o->scene) {
+            o->scene = a;
+        } else {
+            cli_error("render: one scene at a time ('%s' is extra)", a);
+            return IL_EXIT_USAGE;
+        }
+#undef VALUE
+    }
+    if (!o->scene) {
+        cli_error("render: no scene given (see 'illum render --help')");
+        return IL_EXIT_USAGE;
+    }
+    return IL_EXIT_OK;
+}
+
+/* SCENE-NAME.exr in the current directory: the file name without folder and extension. */
+static void default_output(const char *scene, char *buf, size_t size)
+{
+    const char *base = strrchr(scene, '/');
+    base = base ? base + 1 : scene;
+    const char *dot = strrchr(base, '.');
+    int len = dot && dot != base ? (int)(dot - base) : (int)strlen(base);
+    snprintf(buf, size, "%.*s.exr", len, base);
+}
+
+/* A JSON scene's "render" block supplies what the command line left unset. */
+static int apply_scene_settings(const il_scene *scene, render_options *o)
+{
+    il_render_settings rs;
+    if (!il_scene_get_render_settings(scene, &rs))
+        return IL_EXIT_OK;
+    if (rs.method[0] && strcmp(rs.method, "pt") != 0) {
+        cli_error("%s: unknown method '%s' in the render settings (available: pt)", o->scene,
+                  rs.method);
+        return IL_EXIT_BAD_INPUT;
+    }
+    if (o->width == 0 && rs.width <= 16384)
+        o->width = rs.width;
+    if (o->height == 0 && rs.height <= 16384)
+        o->height = rs.height;
+    if (o->desc.spp == 0 && o->desc.time_limit == 0.0) {
+        o->desc.spp = rs.spp;
+        o->desc.time_limit = rs.time_limit;
+    }
+    if (o->desc.max_depth == 0)
+        o->desc.max_depth = rs.max_depth;
+    if (!o->has_seed)
+        o->desc.seed = rs.seed;
+    return IL_EXIT_OK;
+}
+
+static int apply_camera(il_scene *scene, const render_options *o)
+{
+    if (!(o->has_pos || o->has_target || o->has_up || o->has_fov))
+        return IL_EXIT_OK;
+    il_camera_desc cam;
+    il_scene_get_camera(scene, &cam);
+    if (o->has_pos)
+        cam.position = o->cam_pos;
+    if (o->has_target)
+        cam.target = o->cam_target;
+    if (o->has_up)
+        cam.up = o->cam_up;
+    if (o->has_fov)
+        cam.fov_y = (float)o->fov;
+    il_error err = {0};
+    if (il_scene_set_camera(scene, &cam, &err) != IL_OK) {
+        cli_error("%s", err.message);
+        return IL_EXIT_BAD_INPUT;
+    }
+    return IL_EXIT_OK;
+}
+
+static bool write_stats(const render_options *o, const il_render_stats *rs, const il_scene *scene,
+                        double wall)
+{
+    il_scene_info in;
+    il_scene_get_info(scene, &in);
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scene", o->scene);
+    cJSON_AddStringToObject(j, "method", "pt");
+    cJSON_AddNumberToObject(j, "width", o->width);
+    cJSON_AddNumberToObject(j, "height", o->height);
+    cJSON_AddNumberToObject(j, "spp", rs->spp);
+    cJSON_AddNumberToObject(j, "max_depth", o->desc.max_depth ? o->desc.max_depth : 8);
+    cJSON_AddNumberToObject(j, "seed", (double)o->desc.seed);
+    cJSON_AddNumberToObject(j, "threads", o->desc.threads);
+    cJSON_AddNumberToObject(j, "triangles", (double)in.num_triangles);
+    cJSON_AddNumberToObject(j, "render_seconds", rs->seconds);
+    cJSON_AddNumberToObject(j, "total_seconds", wall);
+    cJSON_AddNumberToObject(j, "rays", (double)rs->rays);
+    double secs = rs->seconds > 0.0 ? rs->seconds : 1e-9;
+    cJSON_AddNumberToObject(j, "rays_per_second", (double)rs->rays / secs);
+    cJSON_AddNumberToObject(j, "samples_per_second",
+                            (double)o->width * o->height * rs->spp / secs);
+    cJSON_AddBoolToObject(j, "interrupted", interrupted != 0);
+    cJSON *outs = cJSON_AddArrayToObject(j, "outputs");
+    for (int i = 0; i < o->num_outputs; i++)
+        cJSON_AddItemToArray(outs, cJSON_CreateString(o->outputs[i]));
+    char *text = cJSON_Print(j);
+    cJSON_Delete(j);
+    if (!text)
+        return false;
+    size_t n = strlen(text);
+    char *with_nl = malloc(n + 2);
+    bool ok = false;
+    if (with_nl) {
+        memcpy(with_nl, text, n);
+        with_nl[n] = '\n';
+        with_nl[n + 1] = '\0';
+        ok = cli_write_text_atomic(o->stats, with_nl);
+        free(with_nl);
+    }
+    cJSON_free(text);
+    return ok;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    double t0 = now_seconds();
+    render_options o = {0};
+    o.width = 0;
+    int rc = parse_options(argc, argv, &o);
+    if (rc == -1)
+        return IL_EXIT_OK;
+    if (rc != IL_EXIT_OK)
+        return rc;
+    if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
+        return rc;
+    char default_out[512];
+    if (o.num_outputs == 0) {
+        default_output(o.scene, default_out, sizeof default_out);
+        o.outputs[o.num_outputs++] = default_out;
+    }
+
+    il_scene *scene = NULL;
+    if ((rc = cli_load_scene(o.scene, o.quiet, &scene)) != IL_EXIT_OK)
+        return rc;
+    if ((rc = apply_scene_settings(scene, &o)) != IL_EXIT_OK) {
+        il_scene_release(scene);
+        return rc;
+    }
+    if (o.width == 0)
+        o.width = 512;
+    if (o.height == 0)
+        o.height = 512;
+    if ((rc = apply_camera(scene, &o)) != IL_EXIT_OK) {
+        il_scene_release(scene);
+        return rc;
+    }
+
+    il_error err = {0};
+    il_film *film = NULL;
+    if (il_film_create(o.width, o.height, &film, &err) != IL_OK) {
+        cli_error("%s", err.message);
+        il_scene_release(scene);
+        return cli_exit_for(err.status);
+    }
+    progress_state ps = {.draw = !o.quiet && isatty(STDERR_FILENO)};
+    o.desc.progress = on_progress;
+    o.desc.progress_user = &ps;
+    struct sigaction sa = {0}, old_sa;
+    sa.sa_handler = on_sigint;
+    sigaction(SIGINT, &sa, &old_sa);
+
+    il_render_stats rs = {0};
+    il_status st = il_render(scene, film, &o.desc, &rs, &err);
+    sigaction(SIGINT, &old_sa, NULL);
+    if (ps.drawn)
+        fputc('\n', stderr);
+    if (st == IL_ERR_CANCELLED && rs.spp > 0)
+        st = IL_OK; /* interrupted: write what is done, exit 130 below */
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        il_film_release(film);
+        il_scene_release(scene);
+        return cli_exit_for(st);
+    }
+
+    il_image img = {0};
+    st = il_film_resolve(film, &img, &err);
+    for (int i = 0; st == IL_OK && i < o.num_outputs; i++)
+        st = il_image_write(&img, o.outputs[i], &o.write, &err);
+    il_image_free(&img);
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        il_film_release(film);
+        il_scene_release(scene);
+        return cli_exit_for(st);
+    }
+    if (!o.quiet) {
+        fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
+                rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
+                rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);
+        for (int i = 0; i < o.num_outputs; i++)
+            fprintf(stderr, "%s%s", i ? ", " : "", o.outputs[i]);
+        fputc('\n', stderr);
+    }
+    rc = IL_EXIT_OK;
+    if (o.stats && !write_stats(&o, &rs, scene, now_seconds() - t0))
+        rc = IL_EXIT_BAD_INPUT;
+    il_film_release(film);
+    il_scene_release(scene);
+    if (rc == IL_EXIT_OK && interrupted) {
+        cli_error("interrupted after %u spp; the image so far is written", rs.spp);
+        return IL_EXIT_INTERRUPTED;
+    }
+    return rc;
+}

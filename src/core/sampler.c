@@ -1,0 +1,107 @@
+/* Per-pixel sample streams; see sampler.h.
+ *
+ * Sobol: Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4).
+ * Dimensions come in pairs; each pair is the (0,2)-sequence formed by the
+ * first two Sobol dimensions (dimension 0 is the van der Corput sequence, the
+ * bit-reversed index; dimension 1 uses the direction numbers of the primitive
+ * polynomial x + 1).  Every pair gets its own nested uniform Owen scrambling
+ * (Laine-Karras style hash, Burley section 3) and its own shuffle of the
+ * sample index (the index itself Owen-scrambled with another seed, Burley
+ * section 4), so pairs are decorrelated from each other ("padding").
+ *
+ * PCG: il_pcg32 seeded from hash(seed, pixel, index), one number per draw. */
+#include "core/sampler.h"
+
+/* Reverses the 32 bits of x (swap halves, then bytes, nibbles, pairs, bits). */
+static inline uint32_t reverse_bits(uint32_t x)
+{
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+    x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+    x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+    x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+    return x;
+}
+
+/* Second Sobol dimension: x = XOR of v_k over the set bits k of the index.
+ * For the polynomial x + 1 (degree 1, m_1 = 1) the recurrence is
+ * v_k = v_{k-1} ^ (v_{k-1} >> 1) with v_0 = 2^31 (Bratley & Fox 1988; Joe &
+ * Kuo 2008): the rows of Pascal's triangle mod 2. */
+static inline uint32_t sobol_dim1(uint32_t index)
+{
+    uint32_t x = 0, v = 0x80000000u;
+    for (; index; index >>= 1, v ^= v >> 1)
+        if (index & 1u)
+            x ^= v;
+    return x;
+}
+
+/* Burley 2020, section 3 (improved Laine-Karras permutation): a hash in which
+ * every output bit depends only on the same and lower input bits, so applied
+ * to a bit-reversed value it is a nested uniform Owen scramble. */
+static inline uint32_t laine_karras(uint32_t x, uint32_t seed)
+{
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return x;
+}
+
+static inline uint32_t owen_scramble(uint32_t x, uint32_t seed)
+{
+    return reverse_bits(laine_karras(reverse_bits(x), seed));
+}
+
+void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64_t pixel,
+                      uint32_t sample_index)
+{
+    s->type = type;
+    s->seed = seed;
+    s->pixel = pixel;
+    s->index = sample_index;
+    s->dim = 0;
+    s->rng = il_pcg32_seed(il_hash_combine(il_hash_combine(il_hash64(seed), pixel), sample_index),
+                           0x5851f42d4c957f2dull);
+}
+
+/* The pair of dimensions (dim, dim+1) of the scrambled, shuffled sequence. */
+static il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
+{
+    uint64_t key = il_hash_combine(il_hash_combine(il_hash64(s->seed), s->pixel), dim);
+    uint32_t shuffle_seed = (uint32_t)il_hash64(key ^ 0x243f6a8885a308d3ull);
+    uint32_t seed_x = (uint32_t)key, seed_y = (uint32_t)(key >> 32);
+    uint32_t i = owen_scramble(s->index, shuffle_seed);
+    uint32_t x = owen_scramble(reverse_bits(i), seed_x);
+    uint32_t y = owen_scramble(sobol_dim1(i), seed_y);
+    return v2(il_u32_to_float(x), il_u32_to_float(y));
+}
+
+il_vec2 il_sampler_2d(il_sampler *s)
+{
+    uint32_t dim = s->dim;
+    s->dim += 2;
+    if (s->type == IL_SAMPLER_PCG) {
+        float a = il_pcg32_float(&s->rng);
+        float b = il_pcg32_float(&s->rng);
+        return v2(a, b);
+    }
+    return sobol_pair(s, dim);
+}
+
+/* One dimension from a fresh pair: Burley's pairs are stratified jointly, so
+ * the second member is simply not used. */
+float il_sampler_1d(il_sampler *s)
+{
+    uint32_t dim = s->dim;
+    s->dim += 2;
+    if (s->type == IL_SAMPLER_PCG)
+        return il_pcg32_float(&s->rng);
+    return sobol_pair(s, dim).x;
+}
+
+il_vec2 il_sobol02(uint32_t index)
+{
+    return v2(il_u32_to_float(reverse_bits(index)), il_u32_to_float(sobol_dim1(index)));
+}

@@ -1,0 +1,203 @@
+/* Sampling warps and 1D distributions; see sampling.h.  Formulas follow
+ * pbrt-v4 (Pharr, Jakob, Humphreys 2023), appendix A.5 "Sampling Algorithms",
+ * unless another source is named next to the code. */
+#include "core/sampling.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+/* The largest float below 1: keeps remapped samples inside [0, 1). */
+#define IL_ONE_MINUS_EPSILON 0x1.fffffep-1f
+
+/* Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square";
+ * pbrt-v4 A.5.1 SampleUniformDiskConcentric. */
+il_vec2 il_sample_concentric_disk(il_vec2 u)
+{
+    float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
+    if (ox == 0.0f && oy == 0.0f)
+        return v2(0.0f, 0.0f);
+    float r, theta;
+    if (fabsf(ox) > fabsf(oy)) {
+        r = ox;
+        theta = 0.25f * IL_PI * (oy / ox);
+    } else {
+        r = oy;
+        theta = 0.5f * IL_PI - 0.25f * IL_PI * (ox / oy);
+    }
+    return v2(r * cosf(theta), r * sinf(theta));
+}
+
+/* Malley's method: project disk samples up to the hemisphere (pbrt-v4 A.5.3). */
+il_vec3 il_sample_cosine_hemisphere(il_vec2 u)
+{
+    il_vec2 d = il_sample_concentric_disk(u);
+    float z = sqrtf(fmaxf(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+    return v3(d.x, d.y, z);
+}
+
+float il_cosine_hemisphere_pdf(float cos_theta)
+{
+    return cos_theta > 0.0f ? cos_theta * IL_INV_PI : 0.0f;
+}
+
+/* pbrt-v4 A.5.2 SampleUniformHemisphere: z uniform in [0,1], phi uniform. */
+il_vec3 il_sample_uniform_hemisphere(il_vec2 u)
+{
+    float z = u.x;
+    float r = sqrtf(fmaxf(0.0f, 1.0f - z * z));
+    float phi = 2.0f * IL_PI * u.y;
+    return v3(r * cosf(phi), r * sinf(phi), z);
+}
+
+/* pbrt-v4 A.5.2 SampleUniformSphere: z uniform in [-1,1]. */
+il_vec3 il_sample_uniform_sphere(il_vec2 u)
+{
+    float z = 1.0f - 2.0f * u.x;
+    float r = sqrtf(fmaxf(0.0f, 1.0f - z * z));
+    float phi = 2.0f * IL_PI * u.y;
+    return v3(r * cosf(phi), r * sinf(phi), z);
+}
+
+/* pbrt-v4 A.5.4 SampleUniformCone: cos(theta) uniform in [cos_max, 1]. */
+il_vec3 il_sample_uniform_cone(il_vec2 u, float cos_max)
+{
+    float c = (1.0f - u.x) + u.x * cos_max;
+    float s = sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    float phi = 2.0f * IL_PI * u.y;
+    return v3(s * cosf(phi), s * sinf(phi), c);
+}
+
+float il_uniform_cone_pdf(float cos_max)
+{
+    float solid_angle = 2.0f * IL_PI * (1.0f - cos_max);
+    return solid_angle > 0.0f ? 1.0f / solid_angle : 0.0f;
+}
+
+/* Inverting the CDF of p(alpha) = (n+1)/(2 pi) cos^n(alpha) over the
+ * hemisphere gives cos(alpha) = u^(1/(n+1)) (Lafortune & Willems 1994,
+ * "Using the modified Phong reflectance model for physically based
+ * rendering", section 4). */
+il_vec3 il_sample_phong_lobe(il_vec2 u, float exponent)
+{
+    float c = powf(u.x, 1.0f / (exponent + 1.0f));
+    float s = sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    float phi = 2.0f * IL_PI * u.y;
+    return v3(s * cosf(phi), s * sinf(phi), c);
+}
+
+float il_phong_lobe_pdf(float cos_alpha, float exponent)
+{
+    if (cos_alpha <= 0.0f)
+        return 0.0f;
+    return (exponent + 1.0f) * IL_INV_2PI * powf(cos_alpha, exponent);
+}
+
+/* Heitz 2019, "A Low-Distortion Map Between Triangle and Square" (as in
+ * pbrt-v4 A.5.5 SampleUniformTriangle): fold the square onto the triangle
+ * along the diagonal, keeping neighbourhoods intact. */
+il_vec2 il_sample_triangle(il_vec2 u)
+{
+    float b1, b2;
+    if (u.x < u.y) {
+        b1 = 0.5f * u.x;
+        b2 = u.y - b1;
+    } else {
+        b2 = 0.5f * u.y;
+        b1 = u.x - b2;
+    }
+    return v2(b1, b2);
+}
+
+/* ------------------------------------------------------------ distrib1d */
+
+il_status il_distrib1d_init(il_distrib1d *d, const float *weights, uint32_t n, il_error *err)
+{
+    memset(d, 0, sizeof *d);
+    if (n == 0)
+        return il_fail(err, IL_ERR_INVALID, "distribution: no bins (n == 0)");
+    if (!weights)
+        return il_fail(err, IL_ERR_INVALID, "distribution: no weights given");
+    for (uint32_t i = 0; i < n; i++) {
+        if (!(weights[i] >= 0.0f) || !isfinite(weights[i]))
+            return il_fail(err, IL_ERR_INVALID,
+                           "distribution: weight %u is %g (must be finite and >= 0)", i,
+                           (double)weights[i]);
+    }
+    d->func = il_malloc(sizeof(float) * n, err);
+    d->cdf = il_malloc(sizeof(float) * ((size_t)n + 1), err);
+    if (!d->func || !d->cdf) {
+        il_distrib1d_free(d);
+        return err ? err->status : IL_ERR_MEMORY;
+    }
+    memcpy(d->func, weights, sizeof(float) * n);
+    d->n = n;
+
+    /* Running sums in double so long tables keep their precision. */
+    double sum = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        sum += weights[i];
+    d->cdf[0] = 0.0f;
+    if (sum > 0.0) {
+        double acc = 0.0;
+        for (uint32_t i = 0; i < n; i++) {
+            acc += weights[i];
+            d->cdf[i + 1] = (float)(acc / sum);
+        }
+    } else {
+        /* All weights zero: fall back to a uniform distribution. */
+        for (uint32_t i = 0; i < n; i++)
+            d->cdf[i + 1] = (float)((double)(i + 1) / n);
+    }
+    d->cdf[n] = 1.0f;
+    d->integral = (float)(sum / n);
+    return IL_OK;
+}
+
+void il_distrib1d_free(il_distrib1d *d)
+{
+    if (!d)
+        return;
+    free(d->func);
+    free(d->cdf);
+    memset(d, 0, sizeof *d);
+}
+
+float il_distrib1d_pmf(const il_distrib1d *d, uint32_t i)
+{
+    if (i >= d->n)
+        return 0.0f;
+    if (d->integral > 0.0f)
+        return d->func[i] / (d->integral * (float)d->n);
+    return 1.0f / (float)d->n;
+}
+
+/* Finds the last bin i with cdf[i] <= u.  Because u < 1 = cdf[n], the chosen
+ * bin always satisfies cdf[i] <= u < cdf[i+1]: bins of zero width (zero weight)
+ * can never be chosen.  u outside [0, 1) is clamped into it. */
+uint32_t il_distrib1d_sample_discrete(const il_distrib1d *d, float u, float *pmf, float *u_remapped)
+{
+    if (!(u >= 0.0f))
+        u = 0.0f;
+    if (u > IL_ONE_MINUS_EPSILON)
+        u = IL_ONE_MINUS_EPSILON;
+    uint32_t lo = 0, hi = d->n - 1; /* invariant: cdf[lo] <= u, answer in [lo, hi] */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo + 1) / 2;
+        if (d->cdf[mid] <= u)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    uint32_t i = lo;
+    if (pmf)
+        *pmf = il_distrib1d_pmf(d, i);
+    if (u_remapped) {
+        float width = d->cdf[i + 1] - d->cdf[i];
+        float r = width > 0.0f ? (u - d->cdf[i]) / width : 0.0f;
+        *u_remapped = il_clampf(r, 0.0f, IL_ONE_MINUS_EPSILON);
+    }
+    return i;
+}

@@ -1,0 +1,58 @@
+/* Internal interface of the image module: one reader and one writer per file
+ * format, each in its own file, behind the dispatch in image.c.
+ *
+ * Readers decode a whole file already loaded into memory (`data`, `size`);
+ * `path` is only used in error messages.  They fill `out` (allocated with
+ * il_image_alloc) and report a corrupt or truncated file as IL_ERR_FORMAT
+ * naming the file; they never read outside [data, data + size).
+ *
+ * Writers write an already validated, non-empty image to an open stream (the
+ * temporary file of image.c's atomic write); they report IL_ERR_IO when a
+ * write fails.  Rename and clean-up are image.c's job. */
+#ifndef IL_IMAGE_IMAGE_IO_H
+#define IL_IMAGE_IMAGE_IO_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "illum/illum.h"
+
+/* Largest width or height any reader accepts; a header claiming more is
+ * treated as corrupt. */
+#define IL_IMAGE_MAX_SIDE 65536u
+
+/* Checks dimensions read from a file: both in 1..IL_IMAGE_MAX_SIDE.  Reports
+ * IL_ERR_FORMAT naming `path` otherwise. */
+il_status il_image_check_size(uint64_t width, uint64_t height, const char *path,
+                              il_error *err);
+
+/* exr.c: OpenEXR through the OpenEXR Core C API. */
+il_status il_exr_read(const unsigned char *data, size_t size, const char *path,
+                      il_image *out, il_error *err);
+il_status il_exr_write(const il_image *image, FILE *f, const char *path,
+                       il_exr_precision precision, il_error *err);
+
+/* rgbe.c: Radiance HDR (RGBE). */
+il_status il_hdr_read(const unsigned char *data, size_t size, const char *path,
+                      il_image *out, il_error *err);
+il_status il_hdr_write(const il_image *image, FILE *f, const char *path, il_error *err);
+/* Ward's shared-exponent encoding of one pixel, rounded to nearest (exposed
+ * for tests and for the environment-map code). */
+void il_rgbe_encode(const float rgb[3], unsigned char rgbe[4]);
+void il_rgbe_decode(const unsigned char rgbe[4], float rgb[3]);
+
+/* pfm.c: Portable Float Map. */
+il_status il_pfm_read(const unsigned char *data, size_t size, const char *path,
+                      il_image *out, il_error *err);
+il_status il_pfm_write(const il_image *image, FILE *f, const char *path, il_error *err);
+
+/* png.c: PNG and JPEG through stb_image / stb_image_write. */
+il_status il_png_read(const unsigned char *data, size_t size, const char *path,
+                      il_image *out, il_error *err);
+il_status il_jpeg_read(const unsigned char *data, size_t size, const char *path,
+                       il_image *out, il_error *err);
+il_status il_png_write(const il_image *image, FILE *f, const char *path, float exposure,
+                       il_error *err);
+
+#endif

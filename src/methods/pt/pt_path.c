@@ -1,0 +1,166 @@
+/* One path: the radiance estimator of the path tracer.
+ *
+ * Unidirectional path tracing (Kajiya 1986) in the form of pbrt-v4's
+ * PathIntegrator (13.4): at each vertex, next-event estimation (one light
+ * sample and a shadow ray) plus BSDF sampling to continue the path; an
+ * emitter found either way is weighted by the power heuristic (Veach 1997,
+ * 9.2.4) so the two strategies combine without double counting.  Delta
+ * lights can only be reached by NEE and delta BSDFs only by BSDF sampling:
+ * both keep weight 1. */
+#include <math.h>
+
+#include "core/sampling.h"
+#include "methods/pt/pt.h"
+#include "scene/bsdf.h"
+#include "scene/lights.h"
+#include "trace/trace.h"
+
+/* Weight of an emitter found by BSDF sampling (after a non-delta bounce). */
+static float hit_weight(il_pt_strategy strategy, float bsdf_pdf, float light_pdf)
+{
+    switch (strategy) {
+    case IL_PT_NEE_ONLY:
+        return 0.0f;
+    case IL_PT_BSDF_ONLY:
+        return 1.0f;
+    case IL_PT_MIS:
+    default:
+        return il_power_heuristic(bsdf_pdf, light_pdf);
+    }
+}
+
+/* Weight of a light sample of a non-delta light. */
+static float nee_weight(il_pt_strategy strategy, float light_pdf, float bsdf_pdf)
+{
+    switch (strategy) {
+    case IL_PT_NEE_ONLY:
+        return 1.0f;
+    case IL_PT_BSDF_ONLY:
+        return 0.0f;
+    case IL_PT_MIS:
+    default:
+        return il_power_heuristic(light_pdf, bsdf_pdf);
+    }
+}
+
+/* Shading normals make the two hemispheres of ng and ns disagree near the
+ * silhouette.  A direction pair that is a reflection for one normal and a
+ * transmission for the other would leak light through the surface (Veach
+ * 1997, 5.3.2): such samples are dropped. */
+static bool sides_agree(const il_surface *s, il_vec3 wo, il_vec3 wi)
+{
+    float g = v3_dot(wo, s->ng) * v3_dot(wi, s->ng);
+    float n = v3_dot(wo, s->ns) * v3_dot(wi, s->ns);
+    return (g > 0.0f) == (n > 0.0f) && g != 0.0f;
+}
+
+static inline il_vec3 add_scaled(il_vec3 acc, il_vec3 beta, il_vec3 value, float w)
+{
+    return v3_add(acc, v3_scale(v3_mul(beta, value), w));
+}
+
+il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *smp,
+                       uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays)
+{
+    const il_tracer *tr = s->tracer;
+    il_vec3 L = v3s(0.0f), beta = v3s(1.0f);
+    bool specular = true;          /* camera rays see emitters at full weight */
+    float prev_pdf = 0.0f;         /* solid-angle pdf of the BSDF sample that led here */
+    il_vec3 prev_p = org;
+    il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
+    uint64_t nrays = 0;
+
+    /* `depth` counts the segments before the current one: the path has
+     * depth+1 segments once the ray has been traced. */
+    for (uint32_t depth = 0;; depth++) {
+        il_hit hit;
+        nrays++;
+        if (!il_trace_closest(tr, &ray, &hit)) {
+            il_vec3 le = il_environment_radiance(s, ray.dir);
+            if (!v3_is_zero(le)) {
+                float w = specular ? 1.0f
+                                   : hit_weight(strategy, prev_pdf, il_light_pdf_environment(s, ray.dir));
+                L = add_scaled(L, beta, le, w);
+            }
+            break;
+        }
+        il_surface surf;
+        il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
+        il_vec3 wo = v3_neg(ray.dir);
+        const il_material *m = surf.material;
+
+        /* An emitter found by the camera ray or by BSDF sampling. */
+        if (!v3_is_zero(m->emission)) {
+            il_vec3 le = il_emitted_radiance(m, surf.ng, wo);
+            if (!v3_is_zero(le)) {
+                float w = 1.0f;
+                if (!specular) {
+                    uint32_t light = s->triangle_light[hit.mesh][hit.prim];
+                    w = hit_weight(strategy, prev_pdf, il_light_pdf_area(s, light, prev_p, surf.p, surf.ng));
+                }
+                L = add_scaled(L, beta, le, w);
+            }
+        }
+        /* Another segment would make the path longer than max_depth. */
+        if (depth + 1 >= max_depth)
+            break;
+
+        il_bsdf b;
+        il_bsdf_init(&b, s, &surf);
+        /* The sample dimensions are drawn in the same order at every vertex,
+         * whatever happens, so a vertex's numbers never depend on branches. */
+        float u_select = il_sampler_1d(smp);
+        il_vec2 u_light = il_sampler_2d(smp);
+        float u_lobe = il_sampler_1d(smp);
+        il_vec2 u_bsdf = il_sampler_2d(smp);
+        float u_rr = il_sampler_1d(smp);
+
+        /* Next-event estimation: a light sample and a shadow ray. */
+        il_light_sample ls;
+        if (!il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
+            sides_agree(&surf, wo, ls.wi)) {
+            float w = 1.0f, bsdf_pdf = 0.0f;
+            il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
+            if (!ls.delta)
+                w = nee_weight(strategy, ls.pdf, bsdf_pdf);
+            float cos_i = fabsf(v3_dot(ls.wi, b.frame.n));
+            if (w > 0.0f && cos_i > 0.0f && !v3_is_zero(f)) {
+                il_ray sr;
+                if (isinf(ls.dist)) {
+                    sr = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, ls.wi), .tmin = 0.0f,
+                                  .dir = ls.wi, .tmax = INFINITY};
+                } else {
+                    sr = il_shadow_ray(tr, surf.p, surf.ng, ls.p, ls.n);
+                }
+                nrays++;
+                if (!il_trace_occluded(tr, &sr))
+                    L = add_scaled(L, beta, v3_mul(f, ls.radiance), cos_i * w / ls.pdf);
+            }
+        }
+
+        /* BSDF sampling continues the path. */
+        il_bsdf_sample bs;
+        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !sides_agree(&surf, wo, bs.wi))
+            break;
+        beta = v3_mul(beta, bs.weight);
+        if (v3_is_zero(beta) || !v3_is_finite(beta))
+            break;
+        specular = bs.delta;
+        prev_pdf = bs.pdf;
+        prev_p = surf.p;
+        ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f,
+                       .dir = bs.wi, .tmax = INFINITY};
+
+        /* Russian roulette after the third vertex (pbrt-v4 13.4.4): survive
+         * with probability q = min(max component of the throughput, 0.95)
+         * and divide by q, which keeps the estimate unbiased. */
+        if (depth >= 3) {
+            float q = fminf(v3_max_comp(beta), 0.95f);
+            if (!(u_rr < q))
+                break;
+            beta = v3_scale(beta, 1.0f / q);
+        }
+    }
+    *rays += nrays;
+    return L;
+}

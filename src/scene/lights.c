@@ -1,0 +1,323 @@
+/* The light table; see lights.h.  Light sampling follows pbrt-v4 (Pharr,
+ * Jakob, Humphreys 2023) chapter 12 "Light Sources"; power-proportional light
+ * selection is its PowerLightSampler (12.6.2). */
+#include "scene/lights.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/sampling.h"
+
+/* Total emitted power of each kind, as luminance (pbrt-v4 Light::Phi). */
+
+/* Point light: intensity I in every direction, Phi = 4 pi I (pbrt-v4 12.1). */
+static float power_point(il_vec3 intensity) { return 4.0f * IL_PI * il_luminance(intensity); }
+
+/* Spot light with I(theta) = I cos^n(theta) inside the cone theta < theta_c:
+ * Phi = int_0^{2pi} int_0^{theta_c} I cos^n(theta) sin(theta) dtheta dphi
+ *     = 2 pi I (1 - cos^{n+1}(theta_c)) / (n + 1). */
+static float power_spot(il_vec3 intensity, float cos_cutoff, float n)
+{
+    return 2.0f * IL_PI * il_luminance(intensity) * (1.0f - powf(cos_cutoff, n + 1.0f)) / (n + 1.0f);
+}
+
+/* Directional light: irradiance E over a disk of the scene's radius R facing
+ * it, Phi = pi R^2 E (pbrt-v4 12.4.1, DistantLight::Phi). */
+static float power_directional(il_vec3 e, float radius)
+{
+    return IL_PI * radius * radius * il_luminance(e);
+}
+
+/* Lambertian emitter of radiance L and area A: Phi = pi L A per emitting face
+ * (pbrt-v4 12.2, DiffuseAreaLight::Phi). */
+static float power_area(il_vec3 radiance, float area, bool two_sided)
+{
+    return IL_PI * il_luminance(radiance) * area * (two_sided ? 2.0f : 1.0f);
+}
+
+/* Uniform environment of radiance L around a scene of radius R:
+ * Phi = 4 pi * pi R^2 * L (pbrt-v4 12.5.1, UniformInfiniteLight::Phi). */
+static float power_environment(il_vec3 radiance, float radius)
+{
+    return 4.0f * IL_PI * IL_PI * radius * radius * il_luminance(radiance);
+}
+
+static void triangle_vertices(const il_scene *s, uint32_t mesh, uint32_t prim, il_vec3 v[3])
+{
+    const il_mesh *m = &s->meshes[mesh];
+    const uint32_t *tri = m->indices + 3 * (size_t)prim;
+    for (int k = 0; k < 3; k++)
+        v[k] = m->positions[tri[k]];
+}
+
+void il_lights_free(il_scene *s)
+{
+    free(s->lights);
+    free(s->light_cdf);
+    free(s->light_pmf);
+    if (s->triangle_light) {
+        for (uint32_t i = 0; i < s->num_meshes; i++)
+            free(s->triangle_light[i]);
+        free(s->triangle_light);
+    }
+    s->lights = NULL;
+    s->light_cdf = NULL;
+    s->light_pmf = NULL;
+    s->triangle_light = NULL;
+    s->num_lights = 0;
+    s->environment_light = IL_NO_LIGHT;
+}
+
+static il_status build_fail(il_scene *s, il_status st)
+{
+    il_lights_free(s);
+    return st;
+}
+
+il_status il_lights_build(il_scene *s, il_error *err)
+{
+    il_lights_free(s);
+
+    /* Count first: user lights, emissive triangles, the environment. */
+    uint64_t n = s->num_user_lights + (s->has_environment ? 1u : 0u);
+    for (uint32_t i = 0; i < s->num_meshes; i++)
+        if (!v3_is_zero(s->materials[s->meshes[i].material].emission))
+            n += s->meshes[i].num_triangles;
+    if (n >= UINT32_MAX)
+        return il_fail(err, IL_ERR_INVALID, "the scene has too many lights (%llu)",
+                       (unsigned long long)n);
+
+    s->triangle_light = il_calloc(s->num_meshes ? s->num_meshes : 1, sizeof(uint32_t *), err);
+    s->lights = il_calloc(n ? n : 1, sizeof(il_light), err);
+    if (!s->triangle_light || !s->lights)
+        return build_fail(s, IL_ERR_MEMORY);
+
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < s->num_user_lights; i++) {
+        const il_light_desc *d = &s->user_lights[i];
+        il_light l;
+        memset(&l, 0, sizeof l);
+        l.position = d->position;
+        l.intensity = d->intensity;
+        l.mesh = l.prim = IL_NO_LIGHT;
+        /* Defaults of il_light_desc: zero direction is straight down, a zero
+         * spot angle is 45 degrees. */
+        l.direction = v3_is_zero(d->direction) ? v3(0.0f, -1.0f, 0.0f) : v3_normalize(d->direction);
+        switch (d->type) {
+        case IL_LIGHT_POINT:
+            l.kind = IL_LIGHTK_POINT;
+            l.power = power_point(d->intensity);
+            break;
+        case IL_LIGHT_SPOT: {
+            float angle = d->spot_angle > 0.0f ? d->spot_angle : 45.0f;
+            l.kind = IL_LIGHTK_SPOT;
+            l.cos_cutoff = cosf(angle * IL_PI / 180.0f);
+            l.spot_exponent = d->spot_exponent;
+            l.power = power_spot(d->intensity, l.cos_cutoff, l.spot_exponent);
+            break;
+        }
+        case IL_LIGHT_DIRECTIONAL:
+        default:
+            l.kind = IL_LIGHTK_DIRECTIONAL;
+            l.power = power_directional(d->intensity, s->scene_radius);
+            break;
+        }
+        /* A light that emits nothing is left out: it could only waste samples. */
+        if (l.power > 0.0f && isfinite(l.power))
+            s->lights[count++] = l;
+    }
+
+    for (uint32_t i = 0; i < s->num_meshes; i++) {
+        const il_mesh *m = &s->meshes[i];
+        const il_material *mat = &s->materials[m->material];
+        bool emissive = !v3_is_zero(mat->emission);
+        s->triangle_light[i] = il_malloc((m->num_triangles ? m->num_triangles : 1) * sizeof(uint32_t), err);
+        if (!s->triangle_light[i])
+            return build_fail(s, IL_ERR_MEMORY);
+        for (uint32_t t = 0; t < m->num_triangles; t++) {
+            s->triangle_light[i][t] = IL_NO_LIGHT;
+            if (!emissive)
+                continue;
+            il_vec3 v[3];
+            triangle_vertices(s, i, t, v);
+            float area = 0.5f * v3_length(v3_cross(v3_sub(v[1], v[0]), v3_sub(v[2], v[0])));
+            if (!(area > 0.0f))
+                continue;
+            il_light l;
+            memset(&l, 0, sizeof l);
+            l.kind = IL_LIGHTK_AREA;
+            l.mesh = i;
+            l.prim = t;
+            l.area = area;
+            l.radiance = mat->emission;
+            l.two_sided = mat->two_sided;
+            l.power = power_area(mat->emission, area, mat->two_sided);
+            s->triangle_light[i][t] = count;
+            s->lights[count++] = l;
+        }
+    }
+
+    if (s->has_environment) {
+        il_light l;
+        memset(&l, 0, sizeof l);
+        l.kind = IL_LIGHTK_ENVIRONMENT;
+        l.mesh = l.prim = IL_NO_LIGHT;
+        l.radiance = s->environment.radiance;
+        l.power = power_environment(l.radiance, s->scene_radius);
+        s->environment_light = count;
+        s->lights[count++] = l;
+    }
+
+    if (count == 0)
+        return build_fail(s, il_fail(err, IL_ERR_INVALID, "the scene has no light: add an emissive "
+                                                          "material, a light, or an environment"));
+    s->num_lights = count;
+
+    /* The selection distribution, proportional to power. */
+    float *w = il_malloc(count * sizeof(float), err);
+    if (!w)
+        return build_fail(s, IL_ERR_MEMORY);
+    for (uint32_t i = 0; i < count; i++)
+        w[i] = s->lights[i].power;
+    il_distrib1d d;
+    il_status st = il_distrib1d_init(&d, w, count, err);
+    free(w);
+    if (st != IL_OK)
+        return build_fail(s, st);
+    s->light_cdf = il_malloc(((size_t)count + 1) * sizeof(float), err);
+    s->light_pmf = il_malloc(count * sizeof(float), err);
+    if (!s->light_cdf || !s->light_pmf) {
+        il_distrib1d_free(&d);
+        return build_fail(s, IL_ERR_MEMORY);
+    }
+    memcpy(s->light_cdf, d.cdf, ((size_t)count + 1) * sizeof(float));
+    for (uint32_t i = 0; i < count; i++)
+        s->light_pmf[i] = il_distrib1d_pmf(&d, i);
+    il_distrib1d_free(&d);
+    return IL_OK;
+}
+
+/* A read-only view of the scene's selection table as an il_distrib1d (the
+ * pmf is read from light_pmf, so func is not needed). */
+static uint32_t select_light(const il_scene *s, float u)
+{
+    il_distrib1d d = {.n = s->num_lights, .func = s->light_pmf, .cdf = s->light_cdf, .integral = 0.0f};
+    return il_distrib1d_sample_discrete(&d, u, NULL, NULL);
+}
+
+il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w)
+{
+    if (m->two_sided || v3_dot(ng, w) > 0.0f)
+        return m->emission;
+    return v3s(0.0f);
+}
+
+il_vec3 il_environment_radiance(const il_scene *s, il_vec3 dir)
+{
+    (void)dir; /* a constant sky for now; environment maps will look dir up */
+    return s->has_environment ? s->environment.radiance : v3s(0.0f);
+}
+
+/* Converts the area density 1/A of a uniform point on a triangle to solid
+ * angle seen from the shading point: p_w = p_A * d^2 / |cos theta_l|
+ * (pbrt-v4 4.2.3, equation 4.9). */
+static float area_to_solid_angle(float area, float dist2, float cos_l)
+{
+    float c = fabsf(cos_l);
+    return c > 0.0f && area > 0.0f ? dist2 / (area * c) : 0.0f;
+}
+
+bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u, il_light_sample *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->num_lights == 0)
+        return false;
+    uint32_t li = select_light(s, u_select);
+    const il_light *l = &s->lights[li];
+    float pmf = s->light_pmf[li];
+    if (!(pmf > 0.0f))
+        return false;
+    out->light = li;
+
+    switch (l->kind) {
+    case IL_LIGHTK_POINT:
+    case IL_LIGHTK_SPOT: {
+        il_vec3 d = v3_sub(l->position, p);
+        float dist2 = v3_length2(d);
+        if (!(dist2 > 0.0f))
+            return false;
+        float dist = sqrtf(dist2);
+        out->wi = v3_scale(d, 1.0f / dist);
+        out->dist = dist;
+        out->p = l->position;
+        out->pdf = pmf;
+        out->delta = true;
+        /* pbrt-v4 12.1: radiance arriving = I / d^2 (times the spot's profile). */
+        float scale = 1.0f / dist2;
+        if (l->kind == IL_LIGHTK_SPOT) {
+            /* cos of the angle between the spot's axis and the direction to p. */
+            float c = -v3_dot(l->direction, out->wi);
+            if (c < l->cos_cutoff)
+                return false;
+            if (l->spot_exponent > 0.0f)
+                scale *= powf(c, l->spot_exponent);
+        }
+        out->radiance = v3_scale(l->intensity, scale);
+        return true;
+    }
+    case IL_LIGHTK_DIRECTIONAL:
+        /* pbrt-v4 12.4: all light arrives from -direction. */
+        out->wi = v3_neg(l->direction);
+        out->dist = INFINITY;
+        out->radiance = l->intensity;
+        out->pdf = pmf;
+        out->delta = true;
+        return true;
+    case IL_LIGHTK_AREA: {
+        il_vec2 b = il_sample_triangle(u);
+        il_surface surf;
+        il_scene_surface(s, l->mesh, l->prim, b.x, b.y, &surf);
+        il_vec3 d = v3_sub(surf.p, p);
+        float dist2 = v3_length2(d);
+        if (!(dist2 > 0.0f))
+            return false;
+        float dist = sqrtf(dist2);
+        out->wi = v3_scale(d, 1.0f / dist);
+        out->dist = dist;
+        out->p = surf.p;
+        out->n = surf.ng;
+        out->radiance = il_emitted_radiance(surf.material, surf.ng, v3_neg(out->wi));
+        out->pdf = pmf * area_to_solid_angle(l->area, dist2, v3_dot(surf.ng, out->wi));
+        return out->pdf > 0.0f && isfinite(out->pdf) && !v3_is_zero(out->radiance);
+    }
+    case IL_LIGHTK_ENVIRONMENT:
+        /* Uniform over the sphere of directions (pbrt-v4 12.5.1). */
+        out->wi = il_sample_uniform_sphere(u);
+        out->dist = INFINITY;
+        out->radiance = il_environment_radiance(s, out->wi);
+        out->pdf = pmf * IL_INV_4PI;
+        return true;
+    }
+    return false;
+}
+
+float il_light_pdf_area(const il_scene *s, uint32_t light, il_vec3 p, il_vec3 p_light, il_vec3 n_light)
+{
+    if (light >= s->num_lights || s->lights[light].kind != IL_LIGHTK_AREA)
+        return 0.0f;
+    il_vec3 d = v3_sub(p_light, p);
+    float dist2 = v3_length2(d);
+    if (!(dist2 > 0.0f))
+        return 0.0f;
+    float cos_l = v3_dot(v3_normalize(n_light), d) / sqrtf(dist2);
+    return s->light_pmf[light] * area_to_solid_angle(s->lights[light].area, dist2, cos_l);
+}
+
+float il_light_pdf_environment(const il_scene *s, il_vec3 dir)
+{
+    (void)dir;
+    if (s->environment_light == IL_NO_LIGHT)
+        return 0.0f;
+    return s->light_pmf[s->environment_light] * IL_INV_4PI;
+}

@@ -1,0 +1,49 @@
+# Helpers for the shell tests: run illum, check exit codes and outputs.
+# ctest sets ILLUM (the program), IL_SHARED_DIR, IL_TEST_TMP, IL_SOURCE_DIR.
+set -u
+: "${ILLUM:?}" "${IL_TEST_TMP:?}"
+rm -rf "$IL_TEST_TMP"
+mkdir -p "$IL_TEST_TMP"
+cd "$IL_TEST_TMP" || exit 1
+failures=0
+checks=0
+
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+
+# expect_exit CODE DESCRIPTION -- COMMAND...: runs the command, checks its
+# exit status and that it printed an "illum:" line on stderr when it failed.
+expect_exit() {
+    want=$1; what=$2; shift 3
+    checks=$((checks + 1))
+    "$@" >out.txt 2>err.txt
+    got=$?
+    if [ "$got" != "$want" ]; then
+        fail "$what: exit $got, expected $want ($*)"; cat err.txt >&2
+    elif [ "$want" != 0 ] && ! grep -q '^illum: ' err.txt; then
+        fail "$what: no 'illum:' error message"
+    fi
+}
+
+# expect_stderr PATTERN DESCRIPTION: the last command's stderr matches.
+expect_stderr() {
+    checks=$((checks + 1))
+    grep -q -- "$1" err.txt || { fail "$2: stderr lacks '$1'"; cat err.txt >&2; }
+}
+expect_stdout() {
+    checks=$((checks + 1))
+    grep -q -- "$1" out.txt || { fail "$2: stdout lacks '$1'"; cat out.txt >&2; }
+}
+expect_no_file() {
+    checks=$((checks + 1))
+    # neither the file nor a leftover temporary file
+    if ls "$1"* >/dev/null 2>&1; then fail "$2: '$1' (or a temporary) exists"; fi
+}
+expect_file() {
+    checks=$((checks + 1))
+    [ -s "$1" ] || fail "$2: '$1' missing or empty"
+}
+finish() {
+    echo "$((checks - failures)) passed, $failures failed"
+    [ "$failures" = 0 ]
+    exit $?
+}

@@ -1,0 +1,89 @@
+# Bad input through the command line: a clear message, the documented exit
+# status, and never an output file.
+. "$(dirname "$0")/lib.bash"
+
+expect_exit 2 "no command" -- "$ILLUM"
+expect_exit 2 "unknown command" -- "$ILLUM" frobnicate
+expect_exit 2 "render without scene" -- "$ILLUM" render
+expect_exit 2 "unknown option" -- "$ILLUM" render cornell --bogus -o a.png
+expect_no_file a.png "unknown option"
+expect_exit 2 "option without value" -- "$ILLUM" render cornell --spp
+expect_exit 1 "spp zero" -- "$ILLUM" render cornell --spp 0 -o a.png
+expect_stderr "--spp" "spp zero"
+expect_exit 1 "spp not a number" -- "$ILLUM" render cornell --spp many -o a.png
+expect_exit 1 "negative width" -- "$ILLUM" render cornell --width -5 -o a.png
+expect_exit 1 "huge width" -- "$ILLUM" render cornell --width 100000 -o a.png
+expect_exit 1 "fov out of range" -- "$ILLUM" render cornell --fov 200 -o a.png
+expect_exit 1 "bad vector" -- "$ILLUM" render cornell --camera-pos 1,2 -o a.png
+expect_exit 1 "NaN vector" -- "$ILLUM" render cornell --camera-pos nan,0,0 -o a.png
+expect_exit 1 "negative time" -- "$ILLUM" render cornell --time -1 -o a.png
+expect_exit 1 "unknown method" -- "$ILLUM" render cornell --method magic -o a.png
+expect_exit 1 "unknown output format" -- "$ILLUM" render cornell -o a.bmp
+expect_exit 1 "camera looking at itself" -- "$ILLUM" render cornell --camera-pos 0,0,0 --camera-target 0,0,0 --spp 1 -o a.png
+expect_no_file a.png "bad options"
+
+expect_exit 1 "missing scene file" -- "$ILLUM" render nonexistent.obj -o b.png
+expect_stderr "nonexistent.obj" "missing scene file"
+expect_no_file b.png "missing scene file"
+
+printf '\x00\x01\x02garbage\xff\xfe' > garbage.obj
+expect_exit 1 "garbage OBJ" -- "$ILLUM" render garbage.obj -o c.png
+expect_stderr "garbage.obj" "garbage OBJ"
+expect_no_file c.png "garbage OBJ"
+
+: > empty.obj
+expect_exit 1 "empty OBJ" -- "$ILLUM" render empty.obj -o d.png
+expect_stderr "empty.obj" "empty OBJ"
+expect_no_file d.png "empty OBJ"
+
+# A lit-less scene: one grey triangle.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > dark.obj
+expect_exit 1 "scene without lights" -- "$ILLUM" render dark.obj -o e.png
+expect_stderr "light" "scene without lights"
+expect_no_file e.png "scene without lights"
+
+# Only NaN triangles: all dropped, so the scene is empty.
+printf 'v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > nan.obj
+expect_exit 1 "only NaN triangles" -- "$ILLUM" render nan.obj -o f.png
+expect_no_file f.png "only NaN triangles"
+
+# An emitter plus one NaN triangle: the NaN one is dropped with a warning.
+cat > nan2.mtl <<'MTL'
+newmtl light
+Kd 0 0 0
+Ke 1 1 1
+MTL
+cat > nan2.obj <<'OBJ'
+mtllib nan2.mtl
+v 0 0 0
+v 1 0 0
+v 0 1 0
+v nan 1 1
+usemtl light
+f 1 2 3
+f 1 2 4
+OBJ
+expect_exit 0 "one NaN triangle among good ones" -- "$ILLUM" render nan2.obj --width 8 --height 8 --spp 1 -o g.png
+expect_stderr "warning" "one NaN triangle among good ones"
+expect_file g.png "one NaN triangle among good ones"
+
+expect_exit 1 "missing camera file" -- "$ILLUM" render cornell --camera-file nope.json -o h.png
+echo '{"position": [1, 2]}' > badcam.json
+expect_exit 1 "bad camera file" -- "$ILLUM" render cornell --camera-file badcam.json -o h.png
+expect_no_file h.png "camera files"
+
+expect_exit 1 "output into a missing folder" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o no/such/dir/i.png
+expect_no_file no/such/dir/i.png "missing folder"
+
+# Corrupt images given to compare.
+printf 'not an image' > bad.png
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100 +X 100\n\x02\x02' > bad.hdr
+printf 'v/1\x01\x00\x00' > bad.exr
+expect_exit 1 "corrupt PNG" -- "$ILLUM" compare bad.png bad.png
+expect_stderr "bad.png" "corrupt PNG"
+expect_exit 1 "truncated HDR" -- "$ILLUM" compare bad.hdr bad.hdr
+expect_exit 1 "corrupt EXR" -- "$ILLUM" compare bad.exr bad.exr
+expect_exit 1 "missing image" -- "$ILLUM" compare none.exr none.exr
+expect_exit 2 "compare with one image" -- "$ILLUM" compare only.exr
+
+finish

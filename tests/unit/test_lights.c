@@ -1,0 +1,221 @@
+/* The light table: power-proportional selection, light sampling and its
+ * densities, spot falloff, emission sidedness, the no-light error. */
+#include <string.h>
+
+#include "check.h"
+#include "scene/lights.h"
+#include "scene/scene.h"
+
+#define PI_D 3.14159265358979323846
+
+/* A quad centre c, half-extents ex, ey; its front (normal) is cross(ex, ey). */
+static void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
+{
+    float p[12];
+    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+    for (int i = 0; i < 4; i++) {
+        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
+        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
+        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
+    }
+    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx, .material = mat};
+    il_error err = {0};
+    CHECK_OK(il_scene_add_mesh(s, &m, &err), &err);
+}
+
+static double lum(il_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+int main(void)
+{
+    il_error err = {0};
+
+    /* No light at all: a clear error. */
+    {
+        il_scene *s = NULL;
+        CHECK_OK(il_scene_create(&s, &err), &err);
+        add_quad(s, v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, -1), 0);
+        CHECK(il_scene_commit(s, &err) == IL_ERR_INVALID);
+        CHECK(strstr(err.message, "no light") != NULL);
+        il_scene_release(s);
+    }
+
+    /* One light of every kind. */
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_create(&s, &err), &err);
+    uint32_t emit = 0, emit2 = 0;
+    il_material_desc md = {.emission = {2, 3, 4}};
+    CHECK_OK(il_scene_add_material(s, &md, &emit, &err), &err);
+    il_material_desc md2 = {.emission = {1, 1, 1}, .two_sided = true};
+    CHECK_OK(il_scene_add_material(s, &md2, &emit2, &err), &err);
+    add_quad(s, v3(0, 0, 0), v3(4, 0, 0), v3(0, 0, -4), 0);           /* floor, not emissive */
+    add_quad(s, v3(0, 2, 0), v3(0.5f, 0, 0), v3(0, 0, 0.25f), emit);  /* 1 x 0.5 facing down */
+    add_quad(s, v3(2, 1, 0), v3(0, 0.5f, 0), v3(0, 0, 0.5f), emit2);  /* 1 x 1 two-sided */
+    il_light_desc point = {.type = IL_LIGHT_POINT, .position = {0, 1, 0}, .intensity = {1, 1, 1}};
+    il_light_desc spot = {.type = IL_LIGHT_SPOT, .position = {0, 3, 0}, .intensity = {2, 2, 2},
+                          .spot_angle = 30, .spot_exponent = 4}; /* zero direction: down */
+    il_light_desc spot45 = {.type = IL_LIGHT_SPOT, .position = {1, 3, 0}, .intensity = {1, 0, 0}};
+    il_light_desc dir = {.type = IL_LIGHT_DIRECTIONAL, .direction = {1, -1, 0}, .intensity = {0.5f, 0.5f, 0.5f}};
+    il_light_desc dark = {.type = IL_LIGHT_POINT, .position = {0, 1, 0}}; /* zero intensity: left out */
+    CHECK_OK(il_scene_add_light(s, &point, &err), &err);
+    CHECK_OK(il_scene_add_light(s, &spot, &err), &err);
+    CHECK_OK(il_scene_add_light(s, &spot45, &err), &err);
+    CHECK_OK(il_scene_add_light(s, &dir, &err), &err);
+    CHECK_OK(il_scene_add_light(s, &dark, &err), &err);
+    il_environment_desc env = {.radiance = {0.1f, 0.2f, 0.3f}};
+    CHECK_OK(il_scene_set_environment(s, &env, &err), &err);
+    CHECK_OK(il_scene_commit(s, &err), &err);
+
+    /* 4 user lights, 4 emissive triangles, 1 environment. */
+    CHECK(s->num_lights == 9);
+    CHECK(s->environment_light == 8);
+    CHECK(s->triangle_light[0][0] == IL_NO_LIGHT && s->triangle_light[0][1] == IL_NO_LIGHT);
+    CHECK(s->triangle_light[1][0] == 4 && s->triangle_light[1][1] == 5);
+    CHECK(s->triangle_light[2][0] == 6 && s->triangle_light[2][1] == 7);
+    /* Defaults: zero direction is straight down, zero spot angle is 45 degrees. */
+    CHECK_NEAR(s->lights[1].direction.y, -1.0, 1e-7);
+    CHECK_NEAR(s->lights[2].cos_cutoff, cos(PI_D / 4.0), 1e-6);
+
+    /* Powers (pbrt-v4 12.x Phi) and selection proportional to them. */
+    double R = s->scene_radius;
+    double power[9];
+    power[0] = 4.0 * PI_D * 1.0;
+    power[1] = 2.0 * PI_D * 2.0 * (1.0 - pow(cos(PI_D / 6.0), 5.0)) / 5.0;
+    power[2] = 2.0 * PI_D * 0.2126 * (1.0 - cos(PI_D / 4.0));
+    power[3] = PI_D * R * R * 0.5;
+    power[4] = power[5] = PI_D * lum(v3(2, 3, 4)) * 0.25;   /* each triangle half of 1 x 0.5 */
+    power[6] = power[7] = 2.0 * PI_D * 1.0 * 0.5;          /* two-sided, area 0.5 */
+    power[8] = 4.0 * PI_D * PI_D * R * R * lum(v3(0.1f, 0.2f, 0.3f));
+    double total = 0.0;
+    for (int i = 0; i < 9; i++)
+        total += power[i];
+    for (uint32_t i = 0; i < 9; i++) {
+        CHECK_REL(s->lights[i].power, power[i], 1e-4);
+        CHECK_REL(s->light_pmf[i], power[i] / total, 1e-4);
+    }
+    /* Frequencies of selection match the pmf (u on a fine stratified grid). */
+    {
+        enum { N = 200000 };
+        uint32_t count[9] = {0};
+        il_light_sample ls;
+        for (uint32_t k = 0; k < N; k++) {
+            float u = ((float)k + 0.5f) / (float)N;
+            il_light_sample_at(s, v3(0, 0.5f, 0.3f), u, v2(0.3f, 0.6f), &ls);
+            count[ls.light]++;
+        }
+        for (uint32_t i = 0; i < 9; i++)
+            CHECK_NEAR((double)count[i] / N, s->light_pmf[i], 2.0 / N);
+    }
+
+    /* Point light: I/d^2 from its position; the pdf is the selection probability. */
+    {
+        il_light_sample ls;
+        float u = 0.5f * (s->light_cdf[0] + s->light_cdf[1]);
+        CHECK(il_light_sample_at(s, v3(0, -1, 0), u, v2(0.5f, 0.5f), &ls));
+        CHECK(ls.light == 0 && ls.delta);
+        CHECK_NEAR(ls.wi.y, 1.0, 1e-6);
+        CHECK_NEAR(ls.dist, 2.0, 1e-6);
+        CHECK_NEAR(ls.radiance.x, 0.25, 1e-6);
+        CHECK_NEAR(ls.pdf, s->light_pmf[0], 1e-7);
+    }
+    /* Spot light: I cos^n(angle)/d^2 inside the cone, nothing outside. */
+    {
+        float u = 0.5f * (s->light_cdf[1] + s->light_cdf[2]);
+        il_light_sample ls;
+        double a = 20.0 * PI_D / 180.0, d = 2.0;
+        il_vec3 p = v3((float)(d * sin(a)), (float)(3.0 - d * cos(a)), 0.0f);
+        CHECK(il_light_sample_at(s, p, u, v2(0.5f, 0.5f), &ls));
+        CHECK(ls.light == 1 && ls.delta);
+        CHECK_REL(ls.radiance.y, 2.0 * pow(cos(a), 4.0) / (d * d), 1e-4);
+        CHECK_REL(ls.dist, d, 1e-5);
+        /* On the axis: the full intensity. */
+        CHECK(il_light_sample_at(s, v3(0, 1, 0), u, v2(0.5f, 0.5f), &ls));
+        CHECK_REL(ls.radiance.x, 2.0 / 4.0, 1e-5);
+        /* 35 degrees off the axis: outside the 30 degree cut-off. */
+        a = 35.0 * PI_D / 180.0;
+        p = v3((float)(d * sin(a)), (float)(3.0 - d * cos(a)), 0.0f);
+        CHECK(!il_light_sample_at(s, p, u, v2(0.5f, 0.5f), &ls));
+        /* Above the spot: outside. */
+        CHECK(!il_light_sample_at(s, v3(0, 4, 0), u, v2(0.5f, 0.5f), &ls));
+    }
+    /* Directional: from -direction, infinitely far, irradiance E. */
+    {
+        float u = 0.5f * (s->light_cdf[3] + s->light_cdf[4]);
+        il_light_sample ls;
+        CHECK(il_light_sample_at(s, v3(0, 0, 0), u, v2(0.5f, 0.5f), &ls));
+        CHECK(ls.light == 3 && ls.delta && isinf(ls.dist));
+        CHECK_NEAR(ls.wi.x, -sqrt(0.5), 1e-6);
+        CHECK_NEAR(ls.wi.y, sqrt(0.5), 1e-6);
+        CHECK_NEAR(ls.radiance.z, 0.5, 1e-7);
+    }
+    /* Environment: uniform directions, pdf pmf / (4 pi), as il_light_pdf_environment says. */
+    {
+        float u = 0.5f * (s->light_cdf[8] + 1.0f);
+        il_light_sample ls;
+        CHECK(il_light_sample_at(s, v3(0, 0, 0), u, v2(0.3f, 0.7f), &ls));
+        CHECK(ls.light == 8 && !ls.delta && isinf(ls.dist));
+        CHECK_REL(ls.pdf, s->light_pmf[8] / (4.0 * PI_D), 1e-5);
+        CHECK_REL(il_light_pdf_environment(s, ls.wi), ls.pdf, 1e-6);
+        CHECK_NEAR(ls.radiance.z, 0.3, 1e-7);
+        CHECK_NEAR(v3_length(ls.wi), 1.0, 1e-5);
+        il_vec3 er = il_environment_radiance(s, v3(0, 1, 0));
+        CHECK_NEAR(er.y, 0.2, 1e-7);
+    }
+
+    /* Area lights: the sample's pdf equals il_light_pdf_area, and the mean of
+     * 1/pdf over the light's samples is the solid angle it subtends: for a
+     * rectangle a x b seen from distance d on its axis,
+     * Omega = 4 asin(a b / sqrt((a^2 + 4 d^2)(b^2 + 4 d^2))). */
+    {
+        il_vec3 p = v3(0, 1, 0); /* 1 below the centre of the 1 x 0.5 emitter */
+        double inv_sum = 0.0;
+        int n = 0, front = 0, mismatches = 0;
+        float lo = s->light_cdf[4], hi = s->light_cdf[6];
+        for (int i = 0; i < 256; i++)
+            for (int j = 0; j < 64; j++) {
+                float us = lo + (hi - lo) * ((float)i + 0.5f) / 256.0f;
+                il_vec2 u = v2(((float)j + 0.5f) / 64.0f, (float)((i * 37 + j * 11) % 64 + 0.5) / 64.0f);
+                il_light_sample ls;
+                if (!il_light_sample_at(s, p, us, u, &ls))
+                    continue;
+                front++;
+                float pa = il_light_pdf_area(s, ls.light, p, ls.p, ls.n);
+                if (fabsf(pa - ls.pdf) > 1e-4f * ls.pdf)
+                    mismatches++;
+                CHECK(!ls.delta);
+                /* Divide out the selection of the quad (two triangles). */
+                inv_sum += (s->light_pmf[ls.light] / ls.pdf);
+                n++;
+            }
+        CHECK(front == 256 * 64);
+        CHECK(mismatches == 0);
+        double omega = 4.0 * asin(1.0 * 0.5 / sqrt((1.0 + 4.0) * (0.25 + 4.0)));
+        /* Each triangle's 1/pdf averages to its own solid angle; their sum is the quad's. */
+        CHECK_REL(inv_sum / n * 2.0, omega, 0.01);
+
+        /* From above, the one-sided emitter (facing down) shows its back: nothing. */
+        il_light_sample ls;
+        CHECK(!il_light_sample_at(s, v3(0, 3, 0), 0.5f * (lo + hi), v2(0.3f, 0.3f), &ls));
+        /* The two-sided emitter shines on both sides. */
+        float u2 = 0.5f * (s->light_cdf[6] + s->light_cdf[8]);
+        CHECK(il_light_sample_at(s, v3(3, 1, 0), u2, v2(0.3f, 0.3f), &ls));
+        CHECK(il_light_sample_at(s, v3(1, 1, 0), u2, v2(0.3f, 0.3f), &ls));
+        CHECK_NEAR(ls.radiance.x, 1.0, 1e-7);
+        /* Not an area light: no area pdf. */
+        CHECK(il_light_pdf_area(s, 0, p, v3(0, 2, 0), v3(0, -1, 0)) == 0.0f);
+    }
+
+    /* Emission only from the front face unless two-sided. */
+    {
+        il_material m = {.emission = {1, 2, 3}};
+        il_vec3 e = il_emitted_radiance(&m, v3(0, 1, 0), v3(0, 1, 0));
+        CHECK(e.x == 1.0f && e.z == 3.0f);
+        e = il_emitted_radiance(&m, v3(0, 1, 0), v3(0, -1, 0));
+        CHECK(v3_is_zero(e));
+        m.two_sided = true;
+        e = il_emitted_radiance(&m, v3(0, 1, 0), v3(0, -1, 0));
+        CHECK(e.y == 2.0f);
+    }
+    il_scene_release(s);
+    return check_report();
+}

@@ -1,0 +1,454 @@
+/* Loading mesh files through assimp: McGuire's Cornell boxes (counts, bounds,
+ * the MTL material mapping), the Stanford bunny (PLY), a 3DS round trip, and
+ * bad input (missing, truncated, corrupt files, NaN and degenerate
+ * triangles, missing textures). */
+#include <assimp/cexport.h>
+#include <assimp/cimport.h>
+#include <assimp/scene.h>
+#include <float.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "illum/illum.h"
+#include "scene/scene.h"
+
+#define MCGUIRE IL_SHARED_DIR "/scenes/cornell-box-mcguire/"
+
+static const il_material *find_material(const il_scene *s, const char *name)
+{
+    for (uint32_t i = 0; i < s->num_materials; i++)
+        if (strcmp(s->materials[i].name, name) == 0)
+            return &s->materials[i];
+    return NULL;
+}
+
+static void write_file(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        fprintf(stderr, "cannot write %s\n", path);
+        exit(2);
+    }
+    fwrite(data, 1, n, f);
+    fclose(f);
+}
+
+static void write_text(const char *path, const char *text) { write_file(path, text, strlen(text)); }
+
+static const char *tmp(const char *name)
+{
+    static char buf[8][1024];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", check_tmp_dir(), name);
+    return buf[k];
+}
+
+static bool contains(const char *s, const char *sub) { return s && strstr(s, sub) != NULL; }
+
+static bool any_warning_contains(const il_scene *s, const char *sub)
+{
+    for (uint32_t i = 0; i < s->num_warnings; i++)
+        if (contains(s->warnings[i], sub))
+            return true;
+    return false;
+}
+
+/* What the OBJ file itself says: triangles (faces fanned), the bounds of its
+ * vertices, and the triangles of faces after "usemtl light". */
+typedef struct obj_facts {
+    unsigned triangles, light_triangles, materials;
+    double lo[3], hi[3];
+} obj_facts;
+
+static obj_facts read_obj_facts(const char *path)
+{
+    obj_facts o = {0, 0, 0, {DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, -DBL_MAX, -DBL_MAX}};
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL);
+    if (!f)
+        return o;
+    char line[1024], names[64][64];
+    bool light = false;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == 'v' && line[1] == ' ') {
+            double p[3];
+            if (sscanf(line + 2, "%lf %lf %lf", &p[0], &p[1], &p[2]) == 3)
+                for (int k = 0; k < 3; k++) {
+                    o.lo[k] = p[k] < o.lo[k] ? p[k] : o.lo[k];
+                    o.hi[k] = p[k] > o.hi[k] ? p[k] : o.hi[k];
+                }
+        } else if (line[0] == 'f' && line[1] == ' ') {
+            unsigned corners = 0;
+            for (char *t = strtok(line + 2, " \t\r\n"); t; t = strtok(NULL, " \t\r\n"))
+                corners++;
+            o.triangles += corners - 2;
+            if (light)
+                o.light_triangles += corners - 2;
+        } else if (strncmp(line, "usemtl ", 7) == 0) {
+            char name[64] = "";
+            sscanf(line + 7, "%63s", name);
+            light = strcmp(name, "light") == 0;
+            bool seen = false;
+            for (unsigned i = 0; i < o.materials; i++)
+                seen |= strcmp(names[i], name) == 0;
+            if (!seen && o.materials < 64)
+                snprintf(names[o.materials++], 64, "%s", name);
+        }
+    }
+    fclose(f);
+    return o;
+}
+
+static il_scene *load_ok(const char *path)
+{
+    il_error err = {0};
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_load(path, NULL, &s, &err), &err);
+    return s;
+}
+
+static void test_cornell_original(void)
+{
+    const char *path = MCGUIRE "CornellBox-Original.obj";
+    obj_facts o = read_obj_facts(path);
+    CHECK(o.triangles == 36); /* 18 quads, as read from the file */
+    il_scene *s = load_ok(path);
+    if (!s)
+        return;
+    il_scene_info info;
+    il_scene_get_info(s, &info);
+    CHECK(info.num_triangles == o.triangles);
+    CHECK(info.num_emissive_triangles == o.light_triangles);
+    CHECK(info.num_emissive_triangles == 2);
+    CHECK(info.num_materials == o.materials + 1); /* + illum's default material 0 */
+    CHECK(info.num_materials == 9);
+    CHECK(info.dropped_triangles == 0);
+    CHECK(info.num_warnings == 0);
+    CHECK(info.num_lights == 0);
+    CHECK(!info.has_camera);
+    CHECK_NEAR(info.bounds_min.x, o.lo[0], 1e-6);
+    CHECK_NEAR(info.bounds_min.y, o.lo[1], 1e-6);
+    CHECK_NEAR(info.bounds_min.z, o.lo[2], 1e-6);
+    CHECK_NEAR(info.bounds_max.x, o.hi[0], 1e-6);
+    CHECK_NEAR(info.bounds_max.y, o.hi[1], 1e-6);
+    CHECK_NEAR(info.bounds_max.z, o.hi[2], 1e-6);
+    CHECK_NEAR(info.bounds_min.x, -1.02, 1e-6);
+    CHECK_NEAR(info.bounds_max.y, 1.99, 1e-6);
+
+    const il_material *light = find_material(s, "light");
+    const il_material *red = find_material(s, "leftWall");
+    CHECK(light && red);
+    if (light && red) {
+        CHECK(light->type == IL_MATERIAL_DIFFUSE);
+        CHECK_NEAR(light->emission.x, 17, 0);
+        CHECK_NEAR(light->emission.y, 12, 0);
+        CHECK_NEAR(light->emission.z, 4, 0);
+        CHECK_NEAR(light->diffuse.x, 0.78f, 0);
+        CHECK(red->type == IL_MATERIAL_DIFFUSE); /* Ks 0 */
+        CHECK_NEAR(red->diffuse.x, 0.63f, 0);
+        CHECK_NEAR(red->diffuse.y, 0.065f, 0);
+        CHECK_NEAR(red->diffuse.z, 0.05f, 0);
+        CHECK(v3_is_zero(red->emission));
+    }
+    /* No normals in the file: flat shading (no generated normals). */
+    for (uint32_t i = 0; i < s->num_meshes; i++)
+        CHECK(s->meshes[i].normals == NULL);
+
+    /* End to end through commit: the emissive triangles are the lights. */
+    il_error err = {0};
+    CHECK_OK(il_scene_commit(s, &err), &err);
+    il_scene_release(s);
+}
+
+static void test_mtl_mapping(void)
+{
+    il_scene *s = load_ok(MCGUIRE "CornellBox-Mirror.obj");
+    if (s) {
+        const il_material *m = find_material(s, "tallBox"); /* Ks .95, Ns 1000, illum 5 */
+        CHECK(m && m->type == IL_MATERIAL_MIRROR);
+        if (m)
+            CHECK_NEAR(m->specular.x, 0.95f, 0);
+        m = find_material(s, "shortBox");
+        CHECK(m && m->type == IL_MATERIAL_DIFFUSE);
+        il_scene_release(s);
+    }
+    s = load_ok(MCGUIRE "CornellBox-Sphere.obj");
+    if (s) {
+        const il_material *m = find_material(s, "leftSphere");
+        CHECK(m && m->type == IL_MATERIAL_MIRROR);
+        m = find_material(s, "rightSphere"); /* illum 7, Ni 2.5 */
+        CHECK(m && m->type == IL_MATERIAL_DIELECTRIC);
+        if (m) {
+            CHECK_NEAR(m->ior, 2.5f, 0);
+            CHECK_NEAR(m->specular.y, 1.0f, 0); /* untinted glass */
+        }
+        m = find_material(s, "light");
+        CHECK(m && m->emission.x == 10.0f && m->emission.z == 10.0f);
+        m = find_material(s, "rightWall");
+        CHECK(m && m->type == IL_MATERIAL_DIFFUSE);
+        il_scene_info info;
+        il_scene_get_info(s, &info);
+        CHECK(info.dropped_triangles == 0);
+        /* The spheres come with normals. */
+        bool any_normals = false;
+        for (uint32_t i = 0; i < s->num_meshes; i++)
+            any_normals |= s->meshes[i].normals != NULL;
+        CHECK(any_normals);
+        il_scene_release(s);
+    }
+    s = load_ok(MCGUIRE "CornellBox-Water.obj");
+    if (s) {
+        const il_material *m = find_material(s, "water"); /* illum 7, Ni 1.33 */
+        CHECK(m && m->type == IL_MATERIAL_DIELECTRIC);
+        if (m)
+            CHECK_NEAR(m->ior, 1.33f, 1e-6);
+        il_scene_release(s);
+    }
+    s = load_ok(MCGUIRE "CornellBox-Glossy.obj");
+    if (s) {
+        const il_material *m = find_material(s, "sphere"); /* Ks .7, Ns 32, Tf 1 1 1 */
+        CHECK(m && m->type == IL_MATERIAL_PHONG);
+        if (m) {
+            CHECK_NEAR(m->exponent, 32, 0);
+            CHECK_NEAR(m->specular.x, 0.7f, 0);
+            CHECK_NEAR(m->diffuse.y, 0.631f, 0);
+        }
+        m = find_material(s, "floor"); /* Ks .3, Ns 80 */
+        CHECK(m && m->type == IL_MATERIAL_PHONG);
+        if (m)
+            CHECK_NEAR(m->exponent, 80, 0);
+        m = find_material(s, "ceiling");
+        CHECK(m && m->type == IL_MATERIAL_DIFFUSE);
+        il_scene_release(s);
+    }
+}
+
+static void test_bunny_ply(void)
+{
+    il_scene *s = load_ok(IL_SHARED_DIR "/scenes/stanford-bunny/bun_zipper_res4.ply");
+    if (!s)
+        return;
+    il_scene_info info;
+    il_scene_get_info(s, &info);
+    /* The header says "element face 948"; every face is a triangle. */
+    CHECK(info.num_triangles + info.dropped_triangles == 948);
+    CHECK(info.num_triangles >= 940);
+    CHECK(info.num_meshes == 1);
+    CHECK(s->meshes[0].normals == NULL);
+    CHECK(info.bounds_max.y > 0.15f && info.bounds_max.y < 0.2f); /* about 0.187 */
+    il_scene_release(s);
+}
+
+/* 3DS: export McGuire's box with assimp's exporter, load it back. */
+static void test_3ds_round_trip(void)
+{
+    const char *out = tmp("cornell.3ds");
+    const struct aiScene *ai = aiImportFile(MCGUIRE "CornellBox-Original.obj", 0);
+    CHECK(ai != NULL);
+    if (!ai)
+        return;
+    enum aiReturn r = aiExportScene(ai, "3ds", out, 0);
+    aiReleaseImport(ai);
+    CHECK(r == aiReturn_SUCCESS);
+    if (r != aiReturn_SUCCESS)
+        return;
+    il_scene *s = load_ok(out);
+    if (!s)
+        return;
+    il_scene_info info;
+    il_scene_get_info(s, &info);
+    CHECK(info.num_triangles == 36);
+    CHECK(info.num_emissive_triangles == 2);
+    /* assimp's 3DS importer turns 3ds Max's z-up into y-up (x, z, -y) while
+     * its exporter writes our y-up coordinates unchanged, so the box comes
+     * back turned by -90 degrees about x: y' = z, z' = -y. */
+    CHECK_NEAR(info.bounds_min.x, -1.02, 1e-5);
+    CHECK_NEAR(info.bounds_max.x, 1.00, 1e-5);
+    CHECK_NEAR(info.bounds_min.y, -1.04, 1e-5);
+    CHECK_NEAR(info.bounds_max.y, 0.99, 1e-5);
+    CHECK_NEAR(info.bounds_min.z, -1.99, 1e-5);
+    CHECK_NEAR(info.bounds_max.z, 0.0, 1e-5);
+    il_scene_release(s);
+}
+
+static il_status load_err(const char *path, il_error *err)
+{
+    il_scene *s = (il_scene *)1;
+    il_status st = il_scene_load(path, NULL, &s, err);
+    CHECK(s == NULL);
+    if (st == IL_OK)
+        il_scene_release(s);
+    return st;
+}
+
+static void test_bad_files(void)
+{
+    il_error err = {0};
+    const char *missing = tmp("no-such-file.obj");
+    CHECK(load_err(missing, &err) == IL_ERR_IO);
+    CHECK(contains(err.message, missing) && contains(err.message, "no such file"));
+
+    /* Cut in the middle of a "v" line, then in the middle of an "f" line. */
+    char *text;
+    {
+        FILE *f = fopen(MCGUIRE "CornellBox-Original.obj", "rb");
+        CHECK(f != NULL);
+        if (!f)
+            return;
+        text = calloc(1 << 16, 1);
+        size_t n = fread(text, 1, (1 << 16) - 1, f);
+        fclose(f);
+        CHECK(n > 2000);
+    }
+    const char *cut = strstr(text, "v    0.53  0.00   0.75");
+    CHECK(cut != NULL);
+    if (cut) {
+        write_file(tmp("cut-v.obj"), text, (size_t)(cut - text) + 12);
+        CHECK(load_err(tmp("cut-v.obj"), &err) == IL_ERR_FORMAT);
+        CHECK(contains(err.message, "cut-v.obj") && contains(err.message, "truncated"));
+    }
+    cut = strstr(text, "f -4 -3 -2 -1");
+    CHECK(cut != NULL);
+    if (cut) {
+        write_file(tmp("cut-f.obj"), text, (size_t)(cut - text) + 7);
+        CHECK(load_err(tmp("cut-f.obj"), &err) == IL_ERR_FORMAT);
+        CHECK(contains(err.message, "cut-f.obj") && contains(err.message, "face"));
+    }
+    free(text);
+
+    /* Garbage: binary bytes, and text assimp cannot make sense of. */
+    unsigned char junk[4096];
+    uint32_t x = 12345;
+    for (size_t i = 0; i < sizeof junk; i++)
+        junk[i] = (unsigned char)((x = x * 1664525u + 1013904223u) >> 24);
+    write_file(tmp("junk.obj"), junk, sizeof junk);
+    CHECK(load_err(tmp("junk.obj"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "junk.obj"));
+    write_file(tmp("junk.ply"), junk, sizeof junk);
+    CHECK(load_err(tmp("junk.ply"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "junk.ply"));
+    /* assimp's own message is passed on. */
+    write_text(tmp("badindex.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    CHECK(load_err(tmp("badindex.obj"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "badindex.obj: OBJ:"));
+    write_text(tmp("empty.obj"), "# nothing here\n");
+    CHECK(load_err(tmp("empty.obj"), &err) != IL_OK);
+    CHECK(contains(err.message, "empty.obj"));
+    /* A directory is not a scene file. */
+    CHECK(load_err(check_tmp_dir(), &err) == IL_ERR_IO);
+}
+
+static void test_nan_and_degenerate(void)
+{
+    il_error err = {0};
+    write_text(tmp("nan.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 0\nf 1 2 3\nf 1 2 4\n");
+    il_scene *s = load_ok(tmp("nan.obj"));
+    if (s) {
+        il_scene_info info;
+        il_scene_get_info(s, &info);
+        CHECK(info.num_triangles == 1);
+        CHECK(info.dropped_triangles == 1);
+        CHECK(info.num_warnings == 1);
+        CHECK(any_warning_contains(s, "dropped 1 of 2"));
+        CHECK(info.bounds_max.x == 1.0f && info.bounds_min.x == 0.0f);
+        il_scene_release(s);
+    }
+    /* Only degenerate triangles: a collinear one and one with a repeated corner. */
+    write_text(tmp("degenerate.obj"), "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n");
+    CHECK(load_err(tmp("degenerate.obj"), &err) == IL_ERR_INVALID);
+    CHECK(contains(err.message, "degenerate.obj: no triangles"));
+}
+
+static void test_textures(void)
+{
+    /* A 2x1 PFM texture (bottom-to-top rows; one row here). */
+    const char hdr[] = "PF\n2 1\n-1.0\n";
+    const float px[6] = {0.25f, 0.5f, 1.0f, 0.25f, 0.5f, 1.0f};
+    unsigned char pfm[sizeof hdr - 1 + sizeof px];
+    memcpy(pfm, hdr, sizeof hdr - 1);
+    memcpy(pfm + sizeof hdr - 1, px, sizeof px);
+    write_file(tmp("tex.pfm"), pfm, sizeof pfm);
+    write_text(tmp("tex.mtl"), "newmtl textured\nKd 0.5 0.5 0.5\nmap_Kd tex.pfm\n"
+                               "newmtl lost\nKd 0.2 0.4 0.6\nmap_Kd does-not-exist.png\n");
+    write_text(tmp("tex.obj"), "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                               "usemtl textured\nf 1/1 2/2 3/3\nusemtl lost\nf 1/1 3/3 2/2\n");
+    il_scene *s = load_ok(tmp("tex.obj"));
+    if (!s)
+        return;
+    il_scene_info info;
+    il_scene_get_info(s, &info);
+    CHECK(info.num_triangles == 2);
+    CHECK(info.num_textures == 1);
+    const il_material *t = find_material(s, "textured"), *lost = find_material(s, "lost");
+    CHECK(t && lost);
+    if (t && lost) {
+        CHECK(t->diffuse_texture == 1);
+        if (t->diffuse_texture == 1) {
+            il_vec3 c = il_material_diffuse(s, t, v2(0.3f, 0.5f));
+            CHECK_NEAR(c.x, 0.125f, 1e-6);
+            CHECK_NEAR(c.y, 0.25f, 1e-6);
+            CHECK_NEAR(c.z, 0.5f, 1e-6);
+        }
+        /* The missing texture: a warning naming the file, the colour stays. */
+        CHECK(lost->diffuse_texture == 0);
+        CHECK_NEAR(lost->diffuse.z, 0.6f, 0);
+        CHECK(any_warning_contains(s, "does-not-exist.png"));
+        CHECK(info.num_warnings == 1);
+    }
+    bool uvs = false;
+    for (uint32_t i = 0; i < s->num_meshes; i++)
+        uvs |= s->meshes[i].uvs != NULL;
+    CHECK(uvs);
+    il_scene_release(s);
+}
+
+static void test_builtin_name(void)
+{
+    /* A built-in name that is no file loads the built-in scene. */
+    il_error err = {0};
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    if (s) {
+        il_scene_info info;
+        il_scene_get_info(s, &info);
+        CHECK(info.num_triangles > 0);
+        il_scene_release(s);
+    }
+    CHECK(load_err("no-such-builtin", &err) == IL_ERR_IO);
+    CHECK(contains(err.message, "no-such-builtin: no such file"));
+}
+
+static int log_calls;
+static void count_log(il_log_level level, const char *message, void *user)
+{
+    (void)message;
+    if (level == IL_LOG_WARNING && user == &log_calls)
+        log_calls++;
+}
+
+static void test_log_callback(void)
+{
+    il_load_desc d = {.log = count_log, .log_user = &log_calls};
+    il_error err = {0};
+    il_scene *s = NULL;
+    log_calls = 0;
+    CHECK_OK(il_scene_load(tmp("nan.obj"), &d, &s, &err), &err);
+    CHECK(log_calls == 1);
+    il_scene_release(s);
+}
+
+int main(void)
+{
+    test_cornell_original();
+    test_mtl_mapping();
+    test_bunny_ply();
+    test_3ds_round_trip();
+    test_bad_files();
+    test_nan_and_degenerate();
+    test_textures();
+    test_builtin_name();
+    test_log_callback();
+    return check_report();
+}
