@@ -23,17 +23,21 @@ static inline uint32_t reverse_bits(uint32_t x)
     return x;
 }
 
-/* Second Sobol dimension: x = XOR of v_k over the set bits k of the index.
- * For the polynomial x + 1 (degree 1, m_1 = 1) the recurrence is
- * v_k = v_{k-1} ^ (v_{k-1} >> 1) with v_0 = 2^31 (Bratley & Fox 1988; Joe &
- * Kuo 2008): the rows of Pascal's triangle mod 2. */
-static inline uint32_t sobol_dim1(uint32_t index)
+/* Second Sobol dimension, bit-reversed.  With the polynomial x + 1 (degree 1,
+ * m_1 = 1) the direction numbers follow v_k = v_{k-1} ^ (v_{k-1} >> 1),
+ * v_0 = 2^31 (Bratley & Fox 1988; Joe & Kuo 2008): the rows of Pascal's
+ * triangle mod 2, so output bit j (counted from the top) is the XOR of the
+ * index bits k with C(k, j) odd, i.e. (Lucas' theorem) with j a bit-subset of
+ * k.  That "superset XOR" transform takes five shift-and-mask steps, one per
+ * bit of j, and yields the result bit-reversed (bit j at position j). */
+static inline uint32_t sobol_dim1_reversed(uint32_t index)
 {
-    uint32_t x = 0, v = 0x80000000u;
-    for (; index; index >>= 1, v ^= v >> 1)
-        if (index & 1u)
-            x ^= v;
-    return x;
+    index ^= (index >> 1) & 0x55555555u;
+    index ^= (index >> 2) & 0x33333333u;
+    index ^= (index >> 4) & 0x0f0f0f0fu;
+    index ^= (index >> 8) & 0x00ff00ffu;
+    index ^= (index >> 16) & 0x0000ffffu;
+    return index;
 }
 
 /* Burley 2020, section 3 (improved Laine-Karras permutation): a hash in which
@@ -49,9 +53,11 @@ static inline uint32_t laine_karras(uint32_t x, uint32_t seed)
     return x;
 }
 
-static inline uint32_t owen_scramble(uint32_t x, uint32_t seed)
+/* Nested uniform Owen scrambling of a value given bit-reversed (Burley 2020,
+ * listing 2: reverse, permute, reverse back); the result is in normal order. */
+static inline uint32_t owen_scramble_reversed(uint32_t reversed, uint32_t seed)
 {
-    return reverse_bits(laine_karras(reverse_bits(x), seed));
+    return reverse_bits(laine_karras(reversed, seed));
 }
 
 void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64_t pixel,
@@ -62,19 +68,21 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
     s->pixel = pixel;
     s->index = sample_index;
     s->dim = 0;
-    s->rng = il_pcg32_seed(il_hash_combine(il_hash_combine(il_hash64(seed), pixel), sample_index),
-                           0x5851f42d4c957f2dull);
+    s->key = il_hash_combine(il_hash64(seed), pixel);
+    s->rng = il_pcg32_seed(il_hash_combine(s->key, sample_index), 0x5851f42d4c957f2dull);
 }
 
-/* The pair of dimensions (dim, dim+1) of the scrambled, shuffled sequence. */
+/* The pair of dimensions (dim, dim+1) of the scrambled, shuffled sequence.
+ * Dimension 0 of Sobol is reverse_bits(i), so scrambling it needs no
+ * reversal at all; the shuffled index is the Owen-scrambled sample index. */
 static il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
 {
-    uint64_t key = il_hash_combine(il_hash_combine(il_hash64(s->seed), s->pixel), dim);
+    uint64_t key = il_hash_combine(s->key, dim);
     uint32_t shuffle_seed = (uint32_t)il_hash64(key ^ 0x243f6a8885a308d3ull);
     uint32_t seed_x = (uint32_t)key, seed_y = (uint32_t)(key >> 32);
-    uint32_t i = owen_scramble(s->index, shuffle_seed);
-    uint32_t x = owen_scramble(reverse_bits(i), seed_x);
-    uint32_t y = owen_scramble(sobol_dim1(i), seed_y);
+    uint32_t i = owen_scramble_reversed(reverse_bits(s->index), shuffle_seed);
+    uint32_t x = owen_scramble_reversed(i, seed_x);
+    uint32_t y = owen_scramble_reversed(sobol_dim1_reversed(i), seed_y);
     return v2(il_u32_to_float(x), il_u32_to_float(y));
 }
 
@@ -103,5 +111,6 @@ float il_sampler_1d(il_sampler *s)
 
 il_vec2 il_sobol02(uint32_t index)
 {
-    return v2(il_u32_to_float(reverse_bits(index)), il_u32_to_float(sobol_dim1(index)));
+    return v2(il_u32_to_float(reverse_bits(index)),
+              il_u32_to_float(reverse_bits(sobol_dim1_reversed(index))));
 }

@@ -16,6 +16,7 @@ typedef struct il_sampler {
     uint32_t index;       /* sample index within the pixel */
     uint32_t dim;         /* next dimension */
     il_pcg32 rng;
+    uint64_t key;         /* hash(seed, pixel), computed once per sample */
 } il_sampler;
 
 void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64_t pixel,

@@ -19,6 +19,10 @@ static float power_point(il_vec3 intensity) { return 4.0f * IL_PI * il_luminance
  *     = 2 pi I (1 - cos^{n+1}(theta_c)) / (n + 1). */
 static float power_spot(il_vec3 intensity, float cos_cutoff, float n)
 {
+    /* With n > 0 the profile cos^n is taken as zero beyond 90 degrees, so a
+     * wider cone adds nothing (and powf of a negative cosine is undefined). */
+    if (n > 0.0f)
+        cos_cutoff = fmaxf(cos_cutoff, 0.0f);
     return 2.0f * IL_PI * il_luminance(intensity) * (1.0f - powf(cos_cutoff, n + 1.0f)) / (n + 1.0f);
 }
 
@@ -260,8 +264,11 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
             float c = -v3_dot(l->direction, out->wi);
             if (c < l->cos_cutoff)
                 return false;
-            if (l->spot_exponent > 0.0f)
+            if (l->spot_exponent > 0.0f) {
+                if (c <= 0.0f)
+                    return false;
                 scale *= powf(c, l->spot_exponent);
+            }
         }
         out->radiance = v3_scale(l->intensity, scale);
         return true;

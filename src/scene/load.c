@@ -22,6 +22,9 @@ static bool has_extension(const char *path, const char *ext)
 il_status il_scene_load(const char *path, const il_load_desc *desc, il_scene **out, il_error *err)
 {
     *out = NULL;
+    il_error local;
+    if (!err)
+        err = &local;
     if (!path || !path[0])
         return il_fail(err, IL_ERR_INVALID, "no scene given (a file or a built-in name)");
 
@@ -156,4 +159,14 @@ il_status il_load_add_mesh(il_scene *scene, const il_mesh_desc *d, const il_xfor
     free(nrm);
     free(idx);
     return s;
+}
+
+il_status il_load_prefix_error(il_error *err, il_status status, const char *file, const char *where)
+{
+    char msg[sizeof err->message];
+    memcpy(msg, err->message, sizeof msg);
+    msg[sizeof msg - 1] = '\0';
+    if (where)
+        return il_fail(err, status, "%s: %s: %s", file, where, msg);
+    return il_fail(err, status, "%s: %s", file, msg);
 }

@@ -347,7 +347,7 @@ static il_status material_for(loader *L, unsigned i, uint32_t *out)
     uint32_t idx;
     il_status s = il_scene_add_material(L->scene, &d, &idx, L->err);
     if (s != IL_OK)
-        return il_fail(L->err, s, "%s: %s", L->path, L->err->message);
+        return il_load_prefix_error(L->err, s, L->path, NULL);
     *out = L->material_map[i] = idx;
     return IL_OK;
 }
@@ -414,7 +414,7 @@ static il_status add_mesh(loader *L, const struct aiMesh *am, const struct aiNod
     };
     s = il_load_add_mesh(L->scene, &d, x, L->err);
     if (s != IL_OK)
-        il_fail(L->err, s, "%s: %s", L->path, L->err->message);
+        il_load_prefix_error(L->err, s, L->path, NULL);
 done:
     free(pos);
     free(nrm);
@@ -711,6 +711,9 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
     il_assimp_options none = {0};
     if (!opt)
         opt = &none;
+    il_error local;
+    if (!err)
+        err = &local;
     FILE *f = fopen(path, "rb");
     if (!f)
         return il_fail(err, IL_ERR_IO, "%s: no such file", path);

@@ -291,7 +291,7 @@ static il_status parse_material(jctx *c, const cJSON *m, const char *name, const
     }
     uint32_t idx;
     if ((s = il_scene_add_material(c->scene, &d, &idx, c->err)) != IL_OK)
-        return il_fail(c->err, s, "%s: %s: %s", c->path, where, c->err->message);
+        return il_load_prefix_error(c->err, s, c->path, where);
     named_material *g = realloc(c->mats, (c->num_mats + 1) * sizeof *g);
     if (!g)
         return il_fail(c->err, IL_ERR_MEMORY, "%s: out of memory", c->path);
@@ -632,7 +632,7 @@ static il_status parse_mesh(jctx *c, const cJSON *mesh, const char *where)
     s = il_load_add_mesh(c->scene, &d, &x, c->err);
     il_shape_free(&m);
     if (s != IL_OK)
-        return il_fail(c->err, s, "%s: %s: %s", c->path, where, c->err->message);
+        return il_load_prefix_error(c->err, s, c->path, where);
     if (c->scene->num_meshes == before)
         return bad(c, where, "no triangles (all dropped: NaN/Inf coordinates or zero area)");
     return IL_OK;
@@ -676,7 +676,7 @@ static il_status parse_light(jctx *c, const cJSON *l, const char *where)
     }
     d.direction = v3_normalize(d.direction);
     if ((s = il_scene_add_light(c->scene, &d, c->err)) != IL_OK)
-        return il_fail(c->err, s, "%s: %s: %s", c->path, where, c->err->message);
+        return il_load_prefix_error(c->err, s, c->path, where);
     return IL_OK;
 }
 
@@ -697,7 +697,7 @@ static il_status parse_camera(jctx *c, const cJSON *cam)
     if (!has_pos || !has_target)
         return bad(c, "camera", "\"position\" and \"target\" are required");
     if ((s = il_scene_set_camera(c->scene, &d, c->err)) != IL_OK)
-        return il_fail(c->err, s, "%s: %s", c->path, c->err->message);
+        return il_load_prefix_error(c->err, s, c->path, NULL);
     return IL_OK;
 }
 
@@ -712,7 +712,7 @@ static il_status parse_environment(jctx *c, const cJSON *env)
     if ((s = get_colour(c, env, "radiance", "environment", &d.radiance)) != IL_OK)
         return s;
     if ((s = il_scene_set_environment(c->scene, &d, c->err)) != IL_OK)
-        return il_fail(c->err, s, "%s: %s", c->path, c->err->message);
+        return il_load_prefix_error(c->err, s, c->path, NULL);
     return IL_OK;
 }
 
@@ -818,6 +818,9 @@ static il_status parse_scene(jctx *c, const cJSON *root)
 
 il_status il_load_json(il_scene *scene, const char *path, il_error *err)
 {
+    il_error local;
+    if (!err)
+        err = &local;
     char *text;
     size_t size;
     il_status s = il_load_read_file(path, &text, &size, err);

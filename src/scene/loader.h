@@ -33,6 +33,10 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
  * the file when it cannot be read. */
 il_status il_load_read_file(const char *path, char **out, size_t *size, il_error *err);
 
+/* Rewrites err's message (from il_scene_add_* and the like) as
+ * "FILE: WHERE: message" (WHERE may be NULL); returns status. */
+il_status il_load_prefix_error(il_error *err, il_status status, const char *file, const char *where);
+
 /* Adds a mesh after applying x to its positions and normals (normals by the
  * inverse transpose); a mirroring x (negative determinant) also reverses the
  * winding so the front face stays the front. */

@@ -217,5 +217,34 @@ int main(void)
         CHECK(e.y == 2.0f);
     }
     il_scene_release(s);
+
+    /* Wide spots: with n > 0 the cos^n profile ends at 90 degrees; with n = 0
+     * a 180 degree spot is a point light. */
+    {
+        il_scene *w = NULL;
+        CHECK_OK(il_scene_create(&w, &err), &err);
+        add_quad(w, v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, -1), 0);
+        il_light_desc wide = {.type = IL_LIGHT_SPOT, .position = {0, 1, 0}, .intensity = {1, 1, 1},
+                              .spot_angle = 120, .spot_exponent = 1.5f};
+        il_light_desc full = {.type = IL_LIGHT_SPOT, .position = {0, 1, 0}, .intensity = {1, 1, 1},
+                              .spot_angle = 180};
+        CHECK_OK(il_scene_add_light(w, &wide, &err), &err);
+        CHECK_OK(il_scene_add_light(w, &full, &err), &err);
+        CHECK_OK(il_scene_commit(w, &err), &err);
+        CHECK(w->num_lights == 2);
+        CHECK_REL(w->lights[0].power, 2.0 * PI_D / 2.5, 1e-5);
+        CHECK_REL(w->lights[1].power, 4.0 * PI_D, 1e-5);
+        il_light_sample ls;
+        float u0 = 0.5f * w->light_cdf[1];
+        double a = 60.0 * PI_D / 180.0;
+        CHECK(il_light_sample_at(w, v3((float)sin(a), (float)(1.0 - cos(a)), 0), u0, v2(0.5f, 0.5f), &ls));
+        CHECK_REL(ls.radiance.x, pow(cos(a), 1.5), 1e-4);
+        a = 100.0 * PI_D / 180.0;
+        CHECK(!il_light_sample_at(w, v3((float)sin(a), (float)(1.0 - cos(a)), 0), u0, v2(0.5f, 0.5f), &ls));
+        float u1 = 0.5f * (w->light_cdf[1] + 1.0f);
+        CHECK(il_light_sample_at(w, v3(0, 3, 0), u1, v2(0.5f, 0.5f), &ls));
+        CHECK_REL(ls.radiance.y, 0.25, 1e-5);
+        il_scene_release(w);
+    }
     return check_report();
 }

@@ -184,8 +184,9 @@ static void test_mtl_mapping(void)
             CHECK_NEAR(m->ior, 2.5f, 0);
             CHECK_NEAR(m->specular.y, 1.0f, 0); /* untinted glass */
         }
-        m = find_material(s, "light");
+        m = find_material(s, "light"); /* d 1, Tr 0, Tf 1 1 1, illum 2: opaque */
         CHECK(m && m->emission.x == 10.0f && m->emission.z == 10.0f);
+        CHECK(m && m->type == IL_MATERIAL_DIFFUSE);
         m = find_material(s, "rightWall");
         CHECK(m && m->type == IL_MATERIAL_DIFFUSE);
         il_scene_info info;
@@ -289,6 +290,9 @@ static void test_bad_files(void)
     const char *missing = tmp("no-such-file.obj");
     CHECK(load_err(missing, &err) == IL_ERR_IO);
     CHECK(contains(err.message, missing) && contains(err.message, "no such file"));
+    il_scene *none = NULL;
+    CHECK(il_scene_load(missing, NULL, &none, NULL) == IL_ERR_IO); /* err may be NULL */
+    CHECK(none == NULL);
 
     /* Cut in the middle of a "v" line, then in the middle of an "f" line. */
     char *text;
@@ -439,6 +443,51 @@ static void test_log_callback(void)
     il_scene_release(s);
 }
 
+/* A Collada camera: assimp's importers give the full horizontal angle (60
+ * degrees here), which becomes fov_y = 2 atan(tan(30 deg) / 1.5). */
+static void test_collada_camera(void)
+{
+    write_text(tmp("cam.dae"),
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+    "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+    "  <asset><unit name=\"meter\" meter=\"1\"/><up_axis>Y_UP</up_axis></asset>\n"
+    "  <library_cameras>\n"
+    "    <camera id=\"cam\" name=\"cam\"><optics><technique_common><perspective>\n"
+    "      <xfov>60</xfov><aspect_ratio>1.5</aspect_ratio><znear>0.1</znear><zfar>100</zfar>\n"
+    "    </perspective></technique_common></optics></camera>\n"
+    "  </library_cameras>\n"
+    "  <library_geometries>\n"
+    "    <geometry id=\"tri\" name=\"tri\"><mesh>\n"
+    "      <source id=\"p\"><float_array id=\"pa\" count=\"9\">0 0 0 1 0 0 0 1 0</float_array>\n"
+    "        <technique_common><accessor source=\"#pa\" count=\"3\" stride=\"3\">\n"
+    "          <param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/>\n"
+    "        </accessor></technique_common></source>\n"
+    "      <vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+    "      <triangles count=\"1\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/><p>0 1 2</p></triangles>\n"
+    "    </mesh></geometry>\n"
+    "  </library_geometries>\n"
+    "  <library_visual_scenes>\n"
+    "    <visual_scene id=\"s\">\n"
+    "      <node id=\"camnode\" name=\"camnode\"><translate>0 1 10</translate><instance_camera url=\"#cam\"/></node>\n"
+    "      <node id=\"trinode\" name=\"trinode\"><instance_geometry url=\"#tri\"/></node>\n"
+    "    </visual_scene>\n"
+    "  </library_visual_scenes>\n"
+    "  <scene><instance_visual_scene url=\"#s\"/></scene>\n"
+    "</COLLADA>\n"
+    );
+    il_scene *s = load_ok(tmp("cam.dae"));
+    if (!s)
+        return;
+    il_camera_desc c;
+    CHECK(il_scene_get_camera(s, &c));
+    CHECK_NEAR(c.position.y, 1.0, 1e-6);
+    CHECK_NEAR(c.position.z, 10.0, 1e-6);
+    CHECK_NEAR(c.target.z, 9.0, 1e-6);
+    CHECK_NEAR(c.fov_y, 2.0 * atan(tan(30.0 * 3.14159265358979 / 180.0) / 1.5) * 180.0 /
+                            3.14159265358979, 1e-3);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_cornell_original();
@@ -450,5 +499,6 @@ int main(void)
     test_textures();
     test_builtin_name();
     test_log_callback();
+    test_collada_camera();
     return check_report();
 }

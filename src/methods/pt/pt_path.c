@@ -108,12 +108,13 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
         il_bsdf b;
         il_bsdf_init(&b, s, &surf);
         /* The sample dimensions are drawn in the same order at every vertex,
-         * whatever happens, so a vertex's numbers never depend on branches. */
-        float u_select = il_sampler_1d(smp);
+         * whatever happens, so a vertex's numbers never depend on branches.
+         * The light choice and the BSDF lobe choice share one pair. */
+        il_vec2 u_choice = il_sampler_2d(smp);
         il_vec2 u_light = il_sampler_2d(smp);
-        float u_lobe = il_sampler_1d(smp);
         il_vec2 u_bsdf = il_sampler_2d(smp);
         float u_rr = il_sampler_1d(smp);
+        float u_select = u_choice.x, u_lobe = u_choice.y;
 
         /* Next-event estimation: a light sample and a shadow ray. */
         il_light_sample ls;
