@@ -288,7 +288,8 @@ typedef struct il_render_desc {
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
                                 time_limit is set */
     double time_limit;       /* seconds; 0 means none */
-    uint32_t max_depth;      /* longest path in segments; 0 means 8 */
+    uint32_t max_depth;      /* most bounces (scattering events) on a path; 1 is
+                                direct lighting only; 0 means 8 */
     uint64_t seed;
     int threads;             /* 0 means all cores */
     il_sampler_type sampler;

@@ -21,7 +21,7 @@ static const char *help =
     "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
     "  --time SECONDS         render passes until SECONDS have passed\n"
     "  --width W --height H   image size in pixels (default 512 x 512)\n"
-    "  --max-depth D          longest light path in segments (default 8)\n"
+    "  --max-depth D          most bounces on a path; 1 = direct light only (default 8)\n"
     "  --seed S               random seed (default 0); same seed, same image\n"
     "  --threads T            worker threads (default: all cores)\n"
     "  --sampler sobol|pcg    sample sequence (default sobol: Owen-scrambled Sobol)\n"

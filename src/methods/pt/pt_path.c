@@ -70,8 +70,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
     il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
     uint64_t nrays = 0;
 
-    /* `depth` counts the segments before the current one: the path has
-     * depth+1 segments once the ray has been traced. */
+    /* `depth` counts the scattering events before the current ray. */
     for (uint32_t depth = 0;; depth++) {
         il_hit hit;
         nrays++;
@@ -101,8 +100,10 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
                 L = add_scaled(L, beta, le, w);
             }
         }
-        /* Another segment would make the path longer than max_depth. */
-        if (depth + 1 >= max_depth)
+        /* max_depth scattering events (bounces) at most: after the last
+         * one only its BSDF-sampled emitter hit above is still counted, so
+         * max_depth 1 is exactly direct lighting (pbrt-v4's maxdepth). */
+        if (depth >= max_depth)
             break;
 
         il_bsdf b;
