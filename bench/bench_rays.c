@@ -2,8 +2,8 @@
  *
  *   bench_rays [SCENE] [--width W] [--height H] [--spp N]
  *
- * Builds one batch of rays with the path tracer's mix (camera rays, cosine
- * bounce rays from the first hits, shadow rays to sampled light points), then
+ * Records the rays of one path per pixel traced as the path tracer traces
+ * them (camera, BSDF-sampled bounces, shadow rays to sampled lights), then
  * times the same batch cast (a) by Embree directly (rtcIntersect1/rtcOccluded1
  * on a scene built here), (b) through il_trace_closest/occluded, (c) through
  * the stream calls, each with 1 and 2 threads; last it renders the scene with
@@ -18,6 +18,7 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "scene/bsdf.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
 #include "scene/scene.h"
@@ -37,12 +38,17 @@ typedef struct batch {
     size_t num_shadow;
 } batch;
 
+/* Follows one path per pixel the way the path tracer does (camera ray, then
+ * per vertex a shadow ray to a sampled light point and a BSDF-sampled bounce,
+ * Russian roulette after the third bounce, at most 8 bounces) and records
+ * every ray it casts: the batch has the path tracer's own mix of coherent
+ * and incoherent rays. */
 static void make_batch(const il_scene *scene, uint32_t w, uint32_t h, batch *b)
 {
-    size_t n = (size_t)w * h;
-    b->closest = malloc(2 * n * sizeof(il_ray));
-    b->shadow = malloc(n * sizeof(il_ray));
-    il_hit *hits = malloc(n * sizeof(il_hit));
+    size_t cap_c = (size_t)w * h * 4, cap_s = (size_t)w * h * 4;
+    b->closest = malloc(cap_c * sizeof(il_ray));
+    b->shadow = malloc(cap_s * sizeof(il_ray));
+    b->num_closest = b->num_shadow = 0;
     il_camera cam;
     il_camera_desc cd;
     il_scene_get_camera(scene, &cd);
@@ -50,46 +56,53 @@ static void make_batch(const il_scene *scene, uint32_t w, uint32_t h, batch *b)
     il_pcg32 rng = il_pcg32_seed(1, 2);
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++) {
-            il_ray *r = &b->closest[(size_t)y * w + x];
-            r->org = cam.position;
-            r->dir = il_camera_ray_dir(&cam, x + il_pcg32_float(&rng), y + il_pcg32_float(&rng));
-            r->tmin = 0.0f;
-            r->tmax = INFINITY;
-        }
-    il_trace_closest_n(scene->tracer, b->closest, hits, n);
-    size_t nc = n, ns = 0;
-    for (size_t i = 0; i < n; i++) {
-        if (hits[i].mesh == IL_HIT_NONE)
-            continue;
-        il_surface s;
-        il_scene_surface(scene, hits[i].mesh, hits[i].prim, hits[i].b1, hits[i].b2, &s);
-        il_vec3 wo = v3_neg(b->closest[i].dir);
-        il_vec3 n_side = v3_dot(s.ng, wo) < 0.0f ? v3_neg(s.ng) : s.ng;
-        il_frame f = il_frame_from_normal(n_side);
-        il_vec2 u = v2(il_pcg32_float(&rng), il_pcg32_float(&rng));
-        il_vec3 d = il_frame_to_world(&f, il_sample_cosine_hemisphere(u));
-        il_ray *br = &b->closest[nc++];
-        br->org = il_offset_origin(scene->tracer, s.p, s.ng, d);
-        br->dir = d;
-        br->tmin = 0.0f;
-        br->tmax = INFINITY;
-        il_light_sample ls;
-        if (il_light_sample_at(scene, s.p, il_pcg32_float(&rng),
-                               v2(il_pcg32_float(&rng), il_pcg32_float(&rng)), &ls)) {
-            if (isfinite(ls.dist)) {
-                b->shadow[ns++] = il_shadow_ray(scene->tracer, s.p, s.ng, ls.p, ls.n);
-            } else {
-                il_ray *sr = &b->shadow[ns++];
-                sr->org = il_offset_origin(scene->tracer, s.p, s.ng, ls.wi);
-                sr->dir = ls.wi;
-                sr->tmin = 0.0f;
-                sr->tmax = INFINITY;
+            il_ray ray = {.org = cam.position, .tmin = 0.0f, .tmax = INFINITY,
+                          .dir = il_camera_ray_dir(&cam, x + il_pcg32_float(&rng), y + il_pcg32_float(&rng))};
+            il_vec3 beta = v3s(1.0f);
+            for (int depth = 0; depth < 9; depth++) {
+                if (b->num_closest == cap_c) {
+                    cap_c *= 2;
+                    b->closest = realloc(b->closest, cap_c * sizeof(il_ray));
+                }
+                b->closest[b->num_closest++] = ray;
+                il_hit hit;
+                if (!il_trace_closest(scene->tracer, &ray, &hit) || depth == 8)
+                    break;
+                il_surface s;
+                il_scene_surface(scene, hit.mesh, hit.prim, hit.b1, hit.b2, &s);
+                il_bsdf bsdf;
+                il_bsdf_init(&bsdf, scene, &s);
+                il_vec3 wo = v3_neg(ray.dir);
+                il_light_sample ls;
+                if (!il_bsdf_is_delta(&bsdf) &&
+                    il_light_sample_at(scene, s.p, il_pcg32_float(&rng),
+                                       v2(il_pcg32_float(&rng), il_pcg32_float(&rng)), &ls)) {
+                    if (b->num_shadow == cap_s) {
+                        cap_s *= 2;
+                        b->shadow = realloc(b->shadow, cap_s * sizeof(il_ray));
+                    }
+                    if (isfinite(ls.dist))
+                        b->shadow[b->num_shadow++] = il_shadow_ray(scene->tracer, s.p, s.ng, ls.p, ls.n);
+                    else
+                        b->shadow[b->num_shadow++] = (il_ray){
+                            .org = il_offset_origin(scene->tracer, s.p, s.ng, ls.wi), .dir = ls.wi,
+                            .tmin = 0.0f, .tmax = INFINITY};
+                }
+                il_bsdf_sample bs;
+                if (!il_bsdf_sample_dir(&bsdf, wo, il_pcg32_float(&rng),
+                                        v2(il_pcg32_float(&rng), il_pcg32_float(&rng)), &bs))
+                    break;
+                beta = v3_mul(beta, bs.weight);
+                if (depth >= 3) {
+                    float q = fminf(v3_max_comp(beta), 0.95f);
+                    if (!(il_pcg32_float(&rng) < q))
+                        break;
+                    beta = v3_scale(beta, 1.0f / q);
+                }
+                ray = (il_ray){.org = il_offset_origin(scene->tracer, s.p, s.ng, bs.wi), .dir = bs.wi,
+                               .tmin = 0.0f, .tmax = INFINITY};
             }
         }
-    }
-    b->num_closest = nc;
-    b->num_shadow = ns;
-    free(hits);
 }
 
 /* Embree alone: a device and scene of our own, the same geometry. */
@@ -208,7 +221,7 @@ int main(int argc, char **argv)
     batch b;
     make_batch(scene, w, h, &b);
     size_t total = b.num_closest + b.num_shadow;
-    printf("scene %s: %zu closest-hit rays (camera + bounce), %zu shadow rays\n", name,
+    printf("scene %s: %zu closest-hit rays (camera + bounces), %zu shadow rays\n", name,
            b.num_closest, b.num_shadow);
 
     RTCDevice dev = rtcNewDevice("verbose=0");

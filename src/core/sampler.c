@@ -12,11 +12,10 @@
  * PCG: il_pcg32 seeded from hash(seed, pixel, index), one number per draw. */
 #include "core/sampler.h"
 
-/* Reverses the 32 bits of x (swap halves, then bytes, nibbles, pairs, bits). */
+/* Reverses the 32 bits of x (a byte swap, then nibbles, pairs, bits). */
 static inline uint32_t reverse_bits(uint32_t x)
 {
-    x = (x << 16) | (x >> 16);
-    x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+    x = __builtin_bswap32(x);
     x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
     x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
     x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
@@ -77,9 +76,11 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
  * reversal at all; the shuffled index is the Owen-scrambled sample index. */
 static il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
 {
-    uint64_t key = il_hash_combine(s->key, dim);
-    uint32_t shuffle_seed = (uint32_t)il_hash64(key ^ 0x243f6a8885a308d3ull);
+    /* Three 32-bit seeds from one 64-bit hash of (pixel key, dimension): the
+     * two halves, and a third from one more multiplication. */
+    uint64_t key = il_hash64(s->key + 0x9e3779b97f4a7c15ull * (uint64_t)(dim + 1));
     uint32_t seed_x = (uint32_t)key, seed_y = (uint32_t)(key >> 32);
+    uint32_t shuffle_seed = (uint32_t)((key * 0xda942042e4dd58b5ull) >> 32);
     uint32_t i = owen_scramble_reversed(reverse_bits(s->index), shuffle_seed);
     uint32_t x = owen_scramble_reversed(i, seed_x);
     uint32_t y = owen_scramble_reversed(sobol_dim1_reversed(i), seed_y);

@@ -182,7 +182,7 @@ float il_trace_epsilon(const il_tracer *t) { return t->epsilon; }
 
 il_vec3 il_offset_origin(const il_tracer *t, il_vec3 p, il_vec3 ng, il_vec3 dir)
 {
-    il_vec3 n = v3_normalize(ng);
+    il_vec3 n = ng;
     /* Grow the offset with the coordinates' magnitude: float spacing does. */
     float mag = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
     float eps = t->epsilon + mag * 4.0f * FLT_EPSILON;

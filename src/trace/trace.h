@@ -47,12 +47,12 @@ void il_trace_occluded_n(const il_tracer *tracer, const il_ray *rays, bool *occl
  * (a fixed fraction of its extent) so millimetre and metre scenes behave alike. */
 float il_trace_epsilon(const il_tracer *tracer);
 
-/* A ray origin lifted off the surface at p (geometric normal ng) to the side
- * that `dir` points to, so the ray does not hit its own triangle. */
+/* A ray origin lifted off the surface at p (unit geometric normal ng) to the
+ * side that `dir` points to, so the ray does not hit its own triangle. */
 il_vec3 il_offset_origin(const il_tracer *tracer, il_vec3 p, il_vec3 ng, il_vec3 dir);
 
 /* A shadow ray from p (lifted as above) to the point q (lifted the other way
- * when nq is not zero); tmax stops just short of q. */
+ * when the unit normal nq is not zero); tmax stops just short of q. */
 il_ray il_shadow_ray(const il_tracer *tracer, il_vec3 p, il_vec3 ng, il_vec3 q, il_vec3 nq);
 
 #endif

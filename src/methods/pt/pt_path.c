@@ -109,12 +109,12 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
         il_bsdf b;
         il_bsdf_init(&b, s, &surf);
         /* The sample dimensions are drawn in the same order at every vertex,
-         * whatever happens, so a vertex's numbers never depend on branches.
+         * whatever happens, so a vertex's numbers never depend on branches
+         * (the roulette number, drawn last, only from the fourth bounce on).
          * The light choice and the BSDF lobe choice share one pair. */
         il_vec2 u_choice = il_sampler_2d(smp);
         il_vec2 u_light = il_sampler_2d(smp);
         il_vec2 u_bsdf = il_sampler_2d(smp);
-        float u_rr = il_sampler_1d(smp);
         float u_select = u_choice.x, u_lobe = u_choice.y;
 
         /* Next-event estimation: a light sample and a shadow ray. */
@@ -158,7 +158,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
          * and divide by q, which keeps the estimate unbiased. */
         if (depth >= 3) {
             float q = fminf(v3_max_comp(beta), 0.95f);
-            if (!(u_rr < q))
+            if (!(il_sampler_1d(smp) < q))
                 break;
             beta = v3_scale(beta, 1.0f / q);
         }
