@@ -53,8 +53,7 @@ typedef enum il_status {
     IL_ERR_FORMAT,    /* a file is corrupt, truncated or of an unknown format */
     IL_ERR_INVALID,   /* bad input: absurd parameter, empty scene, no light */
     IL_ERR_MEMORY,    /* out of memory */
-    IL_ERR_RUNTIME,   /* a dependency (Embree, assimp, OpenEXR) failed */
-    IL_ERR_CANCELLED  /* the progress callback asked to stop */
+    IL_ERR_RUNTIME    /* a dependency (Embree, assimp, OpenEXR) failed */
 } il_status;
 
 typedef struct il_error {
@@ -280,7 +279,8 @@ typedef struct il_render_progress {
     const il_film *film;     /* complete after every pass: it may be written */
 } il_render_progress;
 
-/* Called on the calling thread after every pass; return false to stop. */
+/* Called on the calling thread after every pass; return false to stop: il_render
+ * then returns IL_OK and il_render_stats.spp says how many samples the film holds. */
 typedef bool (*il_progress_fn)(const il_render_progress *progress, void *user);
 
 typedef struct il_render_desc {

@@ -105,7 +105,6 @@ int cli_exit_for(il_status st)
     case IL_ERR_IO:
     case IL_ERR_FORMAT:
     case IL_ERR_INVALID: return IL_EXIT_BAD_INPUT;
-    case IL_ERR_CANCELLED: return IL_EXIT_INTERRUPTED;
     case IL_ERR_MEMORY:
     case IL_ERR_RUNTIME: return IL_EXIT_RUNTIME;
     }

@@ -467,8 +467,6 @@ int cmd_render(int argc, char **argv)
     sigaction(SIGINT, &old_sa, NULL);
     if (ps.drawn)
         fputc('\n', stderr);
-    if (st == IL_ERR_CANCELLED && rs.spp > 0)
-        st = IL_OK; /* interrupted: write what is done, exit 130 below */
     if (st != IL_OK) {
         cli_error("%s", err.message);
         il_film_release(film);

@@ -14,7 +14,6 @@ const char *il_status_name(il_status status)
     case IL_ERR_INVALID: return "invalid input";
     case IL_ERR_MEMORY: return "out of memory";
     case IL_ERR_RUNTIME: return "runtime failure";
-    case IL_ERR_CANCELLED: return "cancelled";
     }
     return "unknown status";
 }

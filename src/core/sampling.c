@@ -34,7 +34,7 @@ il_vec2 il_sample_concentric_disk(il_vec2 u)
 il_vec3 il_sample_cosine_hemisphere(il_vec2 u)
 {
     il_vec2 d = il_sample_concentric_disk(u);
-    float z = sqrtf(fmaxf(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+    float z = sqrtf(il_maxf(0.0f, 1.0f - d.x * d.x - d.y * d.y));
     return v3(d.x, d.y, z);
 }
 
@@ -47,7 +47,7 @@ float il_cosine_hemisphere_pdf(float cos_theta)
 il_vec3 il_sample_uniform_hemisphere(il_vec2 u)
 {
     float z = u.x;
-    float r = sqrtf(fmaxf(0.0f, 1.0f - z * z));
+    float r = sqrtf(il_maxf(0.0f, 1.0f - z * z));
     float phi = 2.0f * IL_PI * u.y;
     return v3(r * cosf(phi), r * sinf(phi), z);
 }
@@ -56,7 +56,7 @@ il_vec3 il_sample_uniform_hemisphere(il_vec2 u)
 il_vec3 il_sample_uniform_sphere(il_vec2 u)
 {
     float z = 1.0f - 2.0f * u.x;
-    float r = sqrtf(fmaxf(0.0f, 1.0f - z * z));
+    float r = sqrtf(il_maxf(0.0f, 1.0f - z * z));
     float phi = 2.0f * IL_PI * u.y;
     return v3(r * cosf(phi), r * sinf(phi), z);
 }
@@ -65,7 +65,7 @@ il_vec3 il_sample_uniform_sphere(il_vec2 u)
 il_vec3 il_sample_uniform_cone(il_vec2 u, float cos_max)
 {
     float c = (1.0f - u.x) + u.x * cos_max;
-    float s = sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    float s = sqrtf(il_maxf(0.0f, 1.0f - c * c));
     float phi = 2.0f * IL_PI * u.y;
     return v3(s * cosf(phi), s * sinf(phi), c);
 }
@@ -83,7 +83,7 @@ float il_uniform_cone_pdf(float cos_max)
 il_vec3 il_sample_phong_lobe(il_vec2 u, float exponent)
 {
     float c = powf(u.x, 1.0f / (exponent + 1.0f));
-    float s = sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    float s = sqrtf(il_maxf(0.0f, 1.0f - c * c));
     float phi = 2.0f * IL_PI * u.y;
     return v3(s * cosf(phi), s * sinf(phi), c);
 }

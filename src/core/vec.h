@@ -34,9 +34,14 @@ static inline il_vec3 v3_normalize(il_vec3 a)
     float l = v3_length(a);
     return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
 }
-static inline il_vec3 v3_min(il_vec3 a, il_vec3 b) { return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z)); }
-static inline il_vec3 v3_max(il_vec3 a, il_vec3 b) { return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z)); }
-static inline float v3_max_comp(il_vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
+/* Plain comparisons rather than fminf/fmaxf: without -ffinite-math-only gcc
+ * turns those into library calls on the hot path.  Unlike fminf/fmaxf they
+ * do not skip NaN arguments (the result is then b). */
+static inline float il_minf(float a, float b) { return a < b ? a : b; }
+static inline float il_maxf(float a, float b) { return a > b ? a : b; }
+static inline il_vec3 v3_min(il_vec3 a, il_vec3 b) { return v3(il_minf(a.x, b.x), il_minf(a.y, b.y), il_minf(a.z, b.z)); }
+static inline il_vec3 v3_max(il_vec3 a, il_vec3 b) { return v3(il_maxf(a.x, b.x), il_maxf(a.y, b.y), il_maxf(a.z, b.z)); }
+static inline float v3_max_comp(il_vec3 a) { return il_maxf(a.x, il_maxf(a.y, a.z)); }
 static inline float v3_avg(il_vec3 a) { return (a.x + a.y + a.z) * (1.0f / 3.0f); }
 static inline bool v3_is_zero(il_vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
 static inline bool v3_is_finite(il_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }

@@ -70,7 +70,7 @@ static il_vec3 opaque_eval_local(const il_bsdf *b, il_vec3 wo, il_vec3 wi, float
         float n = b->exponent;
         float lobe = 0.0f;
         if (cos_alpha > 0.0f)
-            lobe = powf(fminf(cos_alpha, 1.0f), n);
+            lobe = powf(il_minf(cos_alpha, 1.0f), n);
         f = v3_fma(f, b->specular, (n + 2.0f) * IL_INV_2PI * lobe);
         /* Mixture pdf of the two sampling strategies (one-sample MIS over
          * lobes, Veach 1997 section 9.2.4). */
@@ -108,13 +108,13 @@ static bool same_geometric_side(const il_bsdf *b, il_vec3 wo, il_vec3 wi)
  * transmitted cosine in *cos_t otherwise. */
 static float fresnel_dielectric(float cos_i, float eta, float *cos_t)
 {
-    float sin2_i = fmaxf(0.0f, 1.0f - cos_i * cos_i);
+    float sin2_i = il_maxf(0.0f, 1.0f - cos_i * cos_i);
     float sin2_t = sin2_i / (eta * eta);           /* Snell's law */
     if (sin2_t >= 1.0f) {
         *cos_t = 0.0f;
         return 1.0f;
     }
-    float ct = sqrtf(fmaxf(0.0f, 1.0f - sin2_t));
+    float ct = sqrtf(il_maxf(0.0f, 1.0f - sin2_t));
     float r_parl = (eta * cos_i - ct) / (eta * cos_i + ct);
     float r_perp = (cos_i - eta * ct) / (cos_i + eta * ct);
     *cos_t = ct;
@@ -160,7 +160,7 @@ static bool dielectric_sample(const il_bsdf *b, il_vec3 wo, float u_lobe, il_bsd
         float scale = 1.0f / (eta * eta);
         out->wi = wi;
         out->pdf = 1.0f - F;
-        out->f = v3_scale(b->specular, (1.0f - F) * scale / fmaxf(cos_t, IL_BSDF_EPS));
+        out->f = v3_scale(b->specular, (1.0f - F) * scale / il_maxf(cos_t, IL_BSDF_EPS));
         out->weight = v3_scale(b->specular, scale);
     }
     out->delta = true;

@@ -69,7 +69,7 @@ il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err
      * from the origin, where float spacing grows. */
     struct RTCBounds b;
     rtcGetSceneBounds(t->scene, &b);
-    float extent = fmaxf(fmaxf(b.upper_x - b.lower_x, b.upper_y - b.lower_y), b.upper_z - b.lower_z);
+    float extent = il_maxf(il_maxf(b.upper_x - b.lower_x, b.upper_y - b.lower_y), b.upper_z - b.lower_z);
     if (!(extent > 0.0f) || !isfinite(extent))
         extent = 1.0f;
     t->epsilon = 1e-5f * extent;
@@ -184,7 +184,7 @@ il_vec3 il_offset_origin(const il_tracer *t, il_vec3 p, il_vec3 ng, il_vec3 dir)
 {
     il_vec3 n = ng;
     /* Grow the offset with the coordinates' magnitude: float spacing does. */
-    float mag = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
+    float mag = il_maxf(fabsf(p.x), il_maxf(fabsf(p.y), fabsf(p.z)));
     float eps = t->epsilon + mag * 4.0f * FLT_EPSILON;
     return v3_dot(n, dir) >= 0.0f ? v3_fma(p, n, eps) : v3_fma(p, n, -eps);
 }

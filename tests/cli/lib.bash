@@ -5,6 +5,9 @@ set -u
 rm -rf "$IL_TEST_TMP"
 mkdir -p "$IL_TEST_TMP"
 cd "$IL_TEST_TMP" || exit 1
+# Under -DIL_SANITIZE=ON a sanitizer report must not pass for a bad-input exit 1.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}exitcode=86"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:+$UBSAN_OPTIONS:}exitcode=86:print_stacktrace=1"
 failures=0
 checks=0
 

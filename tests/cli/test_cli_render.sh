@@ -48,6 +48,20 @@ expect_stdout "mean_luminance  0  0" "black image"
 expect_exit 0 "time limit" -- "$ILLUM" render cornell --width 16 --height 16 --time 0.5 -q -o timed.exr --stats timed.json
 expect_file timed.exr "time limit"
 
+# Ctrl-C: the render stops after the current pass, writes what it has and exits 130.
+"$ILLUM" render cornell --width 64 --height 64 --time 60 -q -o interrupted.pfm --stats interrupted.json 2>err.txt &
+pid=$!
+sleep 2
+kill -INT "$pid"
+wait "$pid"
+got=$?
+checks=$((checks + 1))
+[ "$got" = 130 ] || fail "interrupted render: exit $got, expected 130"
+expect_file interrupted.pfm "interrupted render"
+expect_stderr "interrupted" "interrupted render"
+checks=$((checks + 1))
+grep -q '"interrupted":[[:space:]]*true' interrupted.json || fail "stats of the interrupted render"
+
 # A file without a camera gets the default one and renders.
 if [ -n "${IL_SHARED_DIR:-}" ] && [ -f "$IL_SHARED_DIR/scenes/cornell-box-mcguire/CornellBox-Original.obj" ]; then
     expect_exit 0 "McGuire Cornell box" -- "$ILLUM" render "$IL_SHARED_DIR/scenes/cornell-box-mcguire/CornellBox-Original.obj" \

@@ -157,7 +157,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
          * with probability q = min(max component of the throughput, 0.95)
          * and divide by q, which keeps the estimate unbiased. */
         if (depth >= 3) {
-            float q = fminf(v3_max_comp(beta), 0.95f);
+            float q = il_minf(v3_max_comp(beta), 0.95f);
             if (!(il_sampler_1d(smp) < q))
                 break;
             beta = v3_scale(beta, 1.0f / q);
