@@ -107,7 +107,7 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
         if (desc->progress) {
             il_render_progress p = {
                 .passes_done = done,
-                .passes_total = desc->spp,
+                .passes_total = spp == UINT32_MAX ? 0 : spp,
                 .seconds = seconds,
                 .time_limit = desc->time_limit,
                 .rays = rays,
