@@ -1,5 +1,8 @@
 #include "cli/cli.h"
 
+#include "core/atomic_file.h"
+#include "core/error.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -7,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 void cli_error(const char *fmt, ...)
 {
@@ -113,31 +115,15 @@ int cli_exit_for(il_status st)
 
 bool cli_write_text_atomic(const char *path, const char *text)
 {
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp)
-        return false;
-    snprintf(tmp, n + 16, "%s.tmp-XXXXXX", path);
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        cli_error("%s: cannot write: %s", path, strerror(errno));
-        free(tmp);
-        return false;
-    }
-    FILE *f = fdopen(fd, "w");
-    bool ok = f && fputs(text, f) >= 0;
-    if (f)
-        ok = (fclose(f) == 0) && ok;
-    else
-        close(fd);
-    if (ok && rename(tmp, path) != 0)
-        ok = false;
-    if (!ok) {
-        cli_error("%s: cannot write: %s", path, strerror(errno));
-        unlink(tmp);
-    }
-    free(tmp);
-    return ok;
+    il_error err = {0};
+    il_atomic_file af;
+    il_status st = il_atomic_open(&af, path, &err);
+    if (st == IL_OK)
+        st = il_atomic_close(&af, fputs(text, af.f) >= 0 ? IL_OK
+                                  : il_fail(&err, IL_ERR_IO, "%s: cannot write", path), &err);
+    if (st != IL_OK)
+        cli_error("%s", err.message);
+    return st == IL_OK;
 }
 
 int cli_load_scene(const char *path, bool quiet, il_scene **out)

@@ -10,9 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 il_status il_image_check_size(uint64_t width, uint64_t height, const char *path,
@@ -256,41 +255,9 @@ il_status il_image_write(const il_image *image, const char *path, const il_write
     if (!desc)
         desc = &defaults;
 
-    /* The temporary file: same directory, so rename() is atomic. */
-    size_t len = strlen(path);
-    char *tmp = il_malloc(len + sizeof ".tmp-XXXXXX", err);
-    if (!tmp)
-        return IL_ERR_MEMORY;
-    memcpy(tmp, path, len);
-    memcpy(tmp + len, ".tmp-XXXXXX", sizeof ".tmp-XXXXXX");
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        il_status st = il_fail(err, IL_ERR_IO, "%s: cannot create file: %s", path, strerror(errno));
-        free(tmp);
-        return st;
-    }
-    /* mkstemp creates the file 0600; an image is an ordinary output file. */
-    (void)fchmod(fd, 0644);
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        il_status st = il_fail(err, IL_ERR_IO, "%s: cannot open for writing: %s", path,
-                               strerror(errno));
-        close(fd);
-        unlink(tmp);
-        free(tmp);
-        return st;
-    }
-
-    il_status st = encode(image, fmt, f, path, desc, err);
-    if (st == IL_OK && (fflush(f) != 0 || ferror(f) || fsync(fd) != 0))
-        st = il_fail(err, IL_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-    if (fclose(f) != 0 && st == IL_OK)
-        st = il_fail(err, IL_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
-    if (st == IL_OK && rename(tmp, path) != 0)
-        st = il_fail(err, IL_ERR_IO, "%s: cannot rename the temporary file into place: %s", path,
-                     strerror(errno));
+    il_atomic_file af;
+    il_status st = il_atomic_open(&af, path, err);
     if (st != IL_OK)
-        unlink(tmp);
-    free(tmp);
-    return st;
+        return st;
+    return il_atomic_close(&af, encode(image, fmt, af.f, path, desc, err), err);
 }

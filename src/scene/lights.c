@@ -232,6 +232,20 @@ static float area_to_solid_angle(float area, float dist2, float cos_l)
     return c > 0.0f && area > 0.0f ? dist2 / (area * c) : 0.0f;
 }
 
+/* Points the sample from p at the light point q: wi, dist, p; false when
+ * the two coincide. */
+static bool aim_at(il_light_sample *out, il_vec3 p, il_vec3 q, float *dist2)
+{
+    il_vec3 d = v3_sub(q, p);
+    *dist2 = v3_length2(d);
+    if (!(*dist2 > 0.0f))
+        return false;
+    out->dist = sqrtf(*dist2);
+    out->wi = v3_scale(d, 1.0f / out->dist);
+    out->p = q;
+    return true;
+}
+
 bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u, il_light_sample *out)
 {
     memset(out, 0, sizeof *out);
@@ -247,14 +261,9 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
     switch (l->kind) {
     case IL_LIGHTK_POINT:
     case IL_LIGHTK_SPOT: {
-        il_vec3 d = v3_sub(l->position, p);
-        float dist2 = v3_length2(d);
-        if (!(dist2 > 0.0f))
+        float dist2;
+        if (!aim_at(out, p, l->position, &dist2))
             return false;
-        float dist = sqrtf(dist2);
-        out->wi = v3_scale(d, 1.0f / dist);
-        out->dist = dist;
-        out->p = l->position;
         out->pdf = pmf;
         out->delta = true;
         /* pbrt-v4 12.1: radiance arriving = I / d^2 (times the spot's profile). */
@@ -285,14 +294,9 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
         il_vec2 b = il_sample_triangle(u);
         il_surface surf;
         il_scene_surface(s, l->mesh, l->prim, b.x, b.y, &surf);
-        il_vec3 d = v3_sub(surf.p, p);
-        float dist2 = v3_length2(d);
-        if (!(dist2 > 0.0f))
+        float dist2;
+        if (!aim_at(out, p, surf.p, &dist2))
             return false;
-        float dist = sqrtf(dist2);
-        out->wi = v3_scale(d, 1.0f / dist);
-        out->dist = dist;
-        out->p = surf.p;
         out->n = surf.ng;
         out->radiance = il_emitted_radiance(surf.material, surf.ng, v3_neg(out->wi));
         out->pdf = pmf * area_to_solid_angle(l->area, dist2, v3_dot(surf.ng, out->wi));

@@ -15,32 +15,15 @@
 #include "scene/lights.h"
 #include "trace/trace.h"
 
-/* Weight of an emitter found by BSDF sampling (after a non-delta bounce). */
-static float hit_weight(il_pt_strategy strategy, float bsdf_pdf, float light_pdf)
+/* The weight of a sample of technique `own` (IL_PT_NEE_ONLY: light
+ * sampling, IL_PT_BSDF_ONLY: BSDF sampling) with density own_pdf, when the
+ * other technique has density other_pdf: the power heuristic under MIS,
+ * else 1 for the technique in use and 0 for the other. */
+static float mis_weight(il_pt_strategy strategy, il_pt_strategy own, float own_pdf, float other_pdf)
 {
-    switch (strategy) {
-    case IL_PT_NEE_ONLY:
-        return 0.0f;
-    case IL_PT_BSDF_ONLY:
-        return 1.0f;
-    case IL_PT_MIS:
-    default:
-        return il_power_heuristic(bsdf_pdf, light_pdf);
-    }
-}
-
-/* Weight of a light sample of a non-delta light. */
-static float nee_weight(il_pt_strategy strategy, float light_pdf, float bsdf_pdf)
-{
-    switch (strategy) {
-    case IL_PT_NEE_ONLY:
-        return 1.0f;
-    case IL_PT_BSDF_ONLY:
-        return 0.0f;
-    case IL_PT_MIS:
-    default:
-        return il_power_heuristic(light_pdf, bsdf_pdf);
-    }
+    if (strategy == IL_PT_MIS)
+        return il_power_heuristic(own_pdf, other_pdf);
+    return strategy == own ? 1.0f : 0.0f;
 }
 
 /* Shading normals make the two hemispheres of ng and ns disagree near the
@@ -78,7 +61,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
             il_vec3 le = il_environment_radiance(s, ray.dir);
             if (!v3_is_zero(le)) {
                 float w = specular ? 1.0f
-                                   : hit_weight(strategy, prev_pdf, il_light_pdf_environment(s, ray.dir));
+                                   : mis_weight(strategy, IL_PT_BSDF_ONLY, prev_pdf, il_light_pdf_environment(s, ray.dir));
                 L = add_scaled(L, beta, le, w);
             }
             break;
@@ -95,7 +78,8 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
                 float w = 1.0f;
                 if (!specular) {
                     uint32_t light = s->triangle_light[hit.mesh][hit.prim];
-                    w = hit_weight(strategy, prev_pdf, il_light_pdf_area(s, light, prev_p, surf.p, surf.ng));
+                    w = mis_weight(strategy, IL_PT_BSDF_ONLY, prev_pdf,
+                                   il_light_pdf_area(s, light, prev_p, surf.p, surf.ng));
                 }
                 L = add_scaled(L, beta, le, w);
             }
@@ -124,7 +108,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
             float w = 1.0f, bsdf_pdf = 0.0f;
             il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
             if (!ls.delta)
-                w = nee_weight(strategy, ls.pdf, bsdf_pdf);
+                w = mis_weight(strategy, IL_PT_NEE_ONLY, ls.pdf, bsdf_pdf);
             float cos_i = fabsf(v3_dot(ls.wi, b.frame.n));
             if (w > 0.0f && cos_i > 0.0f && !v3_is_zero(f)) {
                 il_ray sr;

@@ -1,0 +1,60 @@
+#include "core/atomic_file.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/error.h"
+
+#define IL_TMP_SUFFIX ".tmp-XXXXXX" /* mkstemp's template, not a placeholder */
+
+il_status il_atomic_open(il_atomic_file *af, const char *path, il_error *err)
+{
+    af->f = NULL;
+    af->path = path;
+    size_t len = strlen(path);
+    af->tmp = il_malloc(len + sizeof IL_TMP_SUFFIX, err);
+    if (!af->tmp)
+        return IL_ERR_MEMORY;
+    memcpy(af->tmp, path, len);
+    memcpy(af->tmp + len, IL_TMP_SUFFIX, sizeof IL_TMP_SUFFIX);
+    int fd = mkstemp(af->tmp);
+    if (fd < 0) {
+        il_status st = il_fail(err, IL_ERR_IO, "%s: cannot create file: %s", path, strerror(errno));
+        free(af->tmp);
+        af->tmp = NULL;
+        return st;
+    }
+    /* mkstemp creates the file 0600; outputs are ordinary files. */
+    (void)fchmod(fd, 0644);
+    af->f = fdopen(fd, "wb");
+    if (!af->f) {
+        il_status st = il_fail(err, IL_ERR_IO, "%s: cannot open for writing: %s", path,
+                               strerror(errno));
+        close(fd);
+        unlink(af->tmp);
+        free(af->tmp);
+        af->tmp = NULL;
+        return st;
+    }
+    return IL_OK;
+}
+
+il_status il_atomic_close(il_atomic_file *af, il_status st, il_error *err)
+{
+    if (st == IL_OK && (fflush(af->f) != 0 || ferror(af->f) || fsync(fileno(af->f)) != 0))
+        st = il_fail(err, IL_ERR_IO, "%s: cannot write: %s", af->path, strerror(errno));
+    if (fclose(af->f) != 0 && st == IL_OK)
+        st = il_fail(err, IL_ERR_IO, "%s: cannot write: %s", af->path, strerror(errno));
+    if (st == IL_OK && rename(af->tmp, af->path) != 0)
+        st = il_fail(err, IL_ERR_IO, "%s: cannot rename the temporary file into place: %s",
+                     af->path, strerror(errno));
+    if (st != IL_OK)
+        unlink(af->tmp);
+    free(af->tmp);
+    af->tmp = NULL;
+    af->f = NULL;
+    return st;
+}
