@@ -266,7 +266,10 @@ void il_film_release(il_film *film);
 
 /* ------------------------------------------------------------------ render */
 
-typedef enum il_method { IL_METHOD_PT = 0 } il_method;
+typedef enum il_method {
+    IL_METHOD_PT = 0,        /* reference path tracer (docs/path-tracer.md) */
+    IL_METHOD_RADIOSITY      /* progressive-refinement radiosity (docs/radiosity.md) */
+} il_method;
 typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
 typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
 
@@ -283,6 +286,68 @@ typedef struct il_render_progress {
  * then returns IL_OK and il_render_stats.spp says how many samples the film holds. */
 typedef bool (*il_progress_fn)(const il_render_progress *progress, void *user);
 
+/* ------------------------------------------------------------- radiosity */
+
+typedef enum il_form_factor_method {
+    IL_FF_HEMICUBE = 0,      /* Cohen & Greenberg 1985: a z-buffered hemicube per patch */
+    IL_FF_RAYCAST            /* cosine-distributed rays from the patch, through Embree */
+} il_form_factor_method;
+
+typedef enum il_radiosity_solver {
+    IL_SOLVER_SHOOTING = 0,  /* progressive refinement (Cohen et al. 1988) */
+    IL_SOLVER_JACOBI,        /* gathering sweeps, all patches from the previous sweep */
+    IL_SOLVER_GAUSS_SEIDEL   /* gathering sweeps, updated in place */
+} il_radiosity_solver;
+
+/* Handed to il_radiosity_desc.on_step after every shot (or batch of shots)
+ * and after every gathering sweep. */
+typedef struct il_radiosity_progress {
+    uint32_t step;             /* shots or sweeps done */
+    uint32_t num_patches;
+    double unshot_fraction;    /* unshot power / initial power (gathering: the
+                                  power the last sweep added / initial power) */
+    double seconds;            /* since the solve started */
+    const float *radiance;     /* 3 floats per patch: current radiance, with the
+                                  ambient term (Cohen et al. 1988) for display */
+} il_radiosity_progress;
+
+/* Return false to stop the solve early (the result so far is kept). */
+typedef bool (*il_radiosity_step_fn)(const il_radiosity_progress *progress, void *user);
+
+typedef struct il_radiosity_desc {
+    float patch_size;          /* largest patch edge in metres; 0: automatic
+                                  (about 4,000 patches over the scene) */
+    uint32_t subdivisions;     /* > 0: uniform levels instead of patch_size; each
+                                  splits every triangle or quad into 4 */
+    il_form_factor_method form_factors;
+    uint32_t hemicube_resolution; /* pixels along the top face; 0 means 256 */
+    uint32_t ray_samples;      /* ray-cast rays per patch; 0 means 4096 */
+    il_radiosity_solver solver;
+    float tolerance;           /* stop when unshot/initial power is below; 0 means 0.01 */
+    uint32_t max_steps;        /* most shots or sweeps; 0 means no limit but the tolerance */
+    uint32_t ff_cache_mb;      /* memory for cached form-factor rows; 0 means 1024 */
+    float adaptive_threshold;  /* > 0: after the first solve, split patches whose
+                                  radiance differs from a neighbour's by more than
+                                  this fraction, and solve again */
+    il_radiosity_step_fn on_step;
+    void *on_step_user;
+} il_radiosity_desc;
+
+/* What a radiosity solve measured (il_render_stats.radiosity). */
+typedef struct il_radiosity_stats {
+    uint32_t num_patches;
+    uint32_t num_surfaces;
+    uint32_t steps;            /* shots or sweeps */
+    double unshot_fraction;    /* at the end */
+    double seconds_mesh;       /* meshing and its ray-casting structure */
+    double seconds_form_factors; /* wall time spent computing form-factor rows */
+    double seconds_solve;      /* the solve, form factors included */
+    double seconds_render;     /* camera pass */
+    uint64_t rows_computed;    /* form-factor rows computed (misses of the cache) */
+    uint64_t cache_bytes;      /* memory held by cached rows at the end */
+    uint64_t peak_bytes;       /* the solver's own largest allocation total */
+} il_radiosity_stats;
+
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
@@ -296,6 +361,7 @@ typedef struct il_render_desc {
     il_filter_type filter;
     il_progress_fn progress;
     void *progress_user;
+    const il_radiosity_desc *radiosity; /* IL_METHOD_RADIOSITY options; NULL: defaults */
 } il_render_desc;
 
 typedef struct il_render_stats {
@@ -303,6 +369,7 @@ typedef struct il_render_stats {
     uint64_t rays;           /* all rays cast, camera + bounce + shadow */
     double seconds;
     uint64_t nonfinite_samples; /* samples dropped because they were NaN or Inf */
+    il_radiosity_stats radiosity; /* IL_METHOD_RADIOSITY only */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is
@@ -310,6 +377,46 @@ typedef struct il_render_stats {
  * thread count. */
 il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
                     il_render_stats *stats, il_error *err);
+
+/* ------------------------------------------------------------------- bake */
+
+/* Light written onto the geometry: the scene's meshes as the method meshed
+ * them (a diffuse method's patches), with the outgoing radiance at every
+ * vertex.  Surfaces that are not diffuse (mirror, glass) keep their
+ * triangles with zero radiance. */
+typedef struct il_bake_mesh {
+    char name[64];
+    uint32_t num_vertices;
+    uint32_t num_triangles;
+    float *positions;          /* 3 per vertex */
+    float *normals;            /* 3 per vertex */
+    float *radiance;           /* 3 per vertex: W/(sr m^2), linear Rec.709 */
+    uint32_t *indices;         /* 3 per triangle */
+    uint32_t material;         /* the scene material */
+} il_bake_mesh;
+
+typedef struct il_bake_result {
+    uint32_t num_meshes;
+    il_bake_mesh *meshes;
+    il_render_stats stats;
+} il_bake_result;
+
+/* Solves the scene with desc->method (IL_METHOD_RADIOSITY; other methods give
+ * IL_ERR_INVALID until they can bake) and returns per-vertex radiance. */
+il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_result **out,
+                  il_error *err);
+
+typedef struct il_bake_write_desc {
+    float exposure;            /* 8-bit colours: radiance * 2^exposure, clamped, sRGB */
+} il_bake_write_desc;
+
+/* Writes by extension: .ply (binary: positions, normals, 8-bit sRGB colours
+ * and the float radiance as properties radiance_r/g/b) or .glb/.gltf (through
+ * assimp; COLOR_0 display colours, COLOR_1 float radiance).  Written to a
+ * temporary name and renamed.  desc may be NULL. */
+il_status il_bake_write(const il_bake_result *bake, const char *path,
+                        const il_bake_write_desc *desc, il_error *err);
+void il_bake_release(il_bake_result *bake);
 
 #ifdef __cplusplus
 }

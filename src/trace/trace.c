@@ -26,7 +26,23 @@ static void on_embree_error(void *user, enum RTCError code, const char *str)
                  str ? str : "");
 }
 
-il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err)
+/* One triangle geometry over shared arrays: Embree reads them in place.
+ * Vertex buffers need 4 bytes of padding after the last element (Embree
+ * docs); callers allocate it (il_scene_add_mesh does). */
+static void attach_triangles(il_tracer *t, const il_vec3 *positions, uint32_t num_vertices,
+                             const uint32_t *indices, uint32_t num_triangles, uint32_t id)
+{
+    RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions, 0,
+                               sizeof(il_vec3), num_vertices);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0,
+                               3 * sizeof(uint32_t), num_triangles);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(t->scene, g, id);
+    rtcReleaseGeometry(g);
+}
+
+static il_status begin(il_tracer **out, il_error *err)
 {
     *out = NULL;
     il_tracer *t = il_calloc(1, sizeof *t, err);
@@ -42,26 +58,18 @@ il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err
     t->scene = rtcNewScene(t->device);
     rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_HIGH);
     rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_ROBUST);
+    *out = t;
+    return IL_OK;
+}
 
-    for (uint32_t i = 0; i < scene->num_meshes; i++) {
-        const il_mesh *m = &scene->meshes[i];
-        RTCGeometry g = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        /* Shared buffers: Embree reads our arrays in place.  Vertex buffers
-         * need 4 bytes of padding after the last element (Embree docs),
-         * which il_scene_add_mesh allocates. */
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m->positions,
-                                   0, sizeof(il_vec3), m->num_vertices);
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->indices, 0,
-                                   3 * sizeof(uint32_t), m->num_triangles);
-        rtcCommitGeometry(g);
-        rtcAttachGeometryByID(t->scene, g, i);
-        rtcReleaseGeometry(g);
-    }
+static il_status finish(il_tracer *t, il_tracer **out, il_error *err)
+{
     rtcCommitScene(t->scene);
     if (t->embree_error[0]) {
         il_fail(err, IL_ERR_RUNTIME, "building the ray-casting structure failed: %s",
                 t->embree_error);
         il_tracer_release(t);
+        *out = NULL;
         return IL_ERR_RUNTIME;
     }
 
@@ -75,6 +83,31 @@ il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err
     t->epsilon = 1e-5f * extent;
     *out = t;
     return IL_OK;
+}
+
+il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err)
+{
+    il_tracer *t;
+    il_status st = begin(&t, err);
+    if (st != IL_OK)
+        return st;
+    for (uint32_t i = 0; i < scene->num_meshes; i++) {
+        const il_mesh *m = &scene->meshes[i];
+        attach_triangles(t, m->positions, m->num_vertices, m->indices, m->num_triangles, i);
+    }
+    return finish(t, out, err);
+}
+
+il_status il_tracer_create_triangles(const il_vec3 *positions, uint32_t num_vertices,
+                                     const uint32_t *indices, uint32_t num_triangles,
+                                     il_tracer **out, il_error *err)
+{
+    il_tracer *t;
+    il_status st = begin(&t, err);
+    if (st != IL_OK)
+        return st;
+    attach_triangles(t, positions, num_vertices, indices, num_triangles, 0);
+    return finish(t, out, err);
 }
 
 void il_tracer_release(il_tracer *t)

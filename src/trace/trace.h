@@ -31,6 +31,13 @@ typedef struct il_hit {
 /* Builds the BVH over the scene's meshes (each mesh one Embree geometry, its
  * index the geometry id).  Threads: Embree's own. */
 il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err);
+/* Builds the BVH over one triangle set (hits report mesh 0 and the triangle's
+ * index as prim).  The arrays are used in place and must outlive the tracer;
+ * `positions` needs room for one more float after the last vertex (Embree
+ * reads 16 bytes per vertex). */
+il_status il_tracer_create_triangles(const il_vec3 *positions, uint32_t num_vertices,
+                                     const uint32_t *indices, uint32_t num_triangles,
+                                     il_tracer **out, il_error *err);
 void il_tracer_release(il_tracer *tracer);
 
 /* Returns true and fills hit when the ray hits something in [tmin, tmax]. */
