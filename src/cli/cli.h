@@ -2,9 +2,12 @@
 #ifndef IL_CLI_CLI_H
 #define IL_CLI_CLI_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include "illum/illum.h"
+
+struct cJSON;
 
 /* Exit status of every sub-command (docs/cli.md). */
 enum {
@@ -40,8 +43,38 @@ bool cli_write_text_atomic(const char *path, const char *text);
 /* Loads SCENE (file or built-in name) and commits it, printing errors. */
 int cli_load_scene(const char *path, bool quiet, il_scene **out);
 
+/* Writes a JSON object, pretty-printed with a final newline, atomically. */
+bool cli_write_json(const char *path, struct cJSON *json);
+
+/* The radiosity options (cli_radiosity.c), shared by render and bake. */
+typedef struct cli_radiosity_options {
+    il_radiosity_desc desc;
+    bool given;                      /* any radiosity option on the command line */
+    const char *first;               /* the first one given, for messages */
+    bool draw, drawn;                /* progress line */
+    double last_draw;                /* solve seconds when it was last drawn */
+    const volatile sig_atomic_t *stop; /* set by Ctrl-C: ends the solve early */
+} cli_radiosity_options;
+
+extern const char cli_radiosity_help[];
+/* When argv[*i] is a radiosity option, consumes it (and its value), sets *rc
+ * to IL_EXIT_OK or the exit status of a bad value, and returns true. */
+bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *o, int *rc);
+/* True when the command line has "--method radiosity" (for --help). */
+bool cli_help_wants_radiosity(int argc, char **argv);
+/* Installs desc.on_step: "radiosity: step N, unshot X%" on a terminal unless
+ * quiet; the solve stops early once *stop is set. */
+void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
+                                    const volatile sig_atomic_t *stop);
+void cli_radiosity_end_progress(cli_radiosity_options *o);
+/* Adds the "radiosity" object of --stats to `parent`. */
+void cli_radiosity_stats_json(struct cJSON *parent, const il_radiosity_stats *stats);
+/* One line on stderr: patches, steps, unshot fraction, time per phase. */
+void cli_radiosity_summary(const il_radiosity_stats *stats);
+
 int cmd_render(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_bake(int argc, char **argv);
 
 #endif

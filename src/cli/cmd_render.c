@@ -15,9 +15,12 @@ static const char *help =
     "usage: illum render SCENE [options]\n"
     "\n"
     "Renders SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
-    "atrium) through its camera and writes the image(s).\n"
+    "atrium, simple-room, shadow-room, box-room) through its camera and writes the\n"
+    "image(s).\n"
     "\n"
-    "  --method pt            rendering method (pt: path tracing, the default)\n"
+    "  --method pt|radiosity  rendering method (pt: path tracing, the default;\n"
+    "                         radiosity: 'illum render --method radiosity --help'\n"
+    "                         lists its options)\n"
     "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
     "  --time SECONDS         render passes until SECONDS have passed\n"
     "  --width W --height H   image size in pixels (default 512 x 512)\n"
@@ -55,6 +58,8 @@ typedef struct render_options {
     bool has_pos, has_target, has_up, has_fov, has_seed;
     il_vec3 cam_pos, cam_target, cam_up;
     double fov;
+    bool has_method;
+    cli_radiosity_options rad;
 } render_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -176,11 +181,30 @@ static int read_camera_file(render_options *o)
     return IL_EXIT_OK;
 }
 
+/* Radiosity options need the radiosity method.  Without --method a JSON
+ * scene's "render" block may still choose it, so cmd_render checks again
+ * (final) once the scene is loaded. */
+static int check_method_options(const render_options *o, bool final)
+{
+    if (!o->rad.given || o->desc.method == IL_METHOD_RADIOSITY || (!o->has_method && !final))
+        return IL_EXIT_OK;
+    cli_error("%s is a radiosity option; it needs --method radiosity (see 'illum render "
+              "--method radiosity --help')",
+              o->rad.first);
+    return IL_EXIT_USAGE;
+}
+
 static int parse_options(int argc, char **argv, render_options *o)
 {
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = NULL;
+        int rad_rc;
+        if (cli_radiosity_option(argc, argv, &i, &o->rad, &rad_rc)) {
+            if (rad_rc != IL_EXIT_OK)
+                return rad_rc;
+            continue;
+        }
 #define VALUE()                                   \
     do {                                          \
         if (!(v = cli_value(argc, argv, &i)))     \
@@ -188,14 +212,20 @@ static int parse_options(int argc, char **argv, render_options *o)
     } while (0)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(help, stdout);
+            if (cli_help_wants_radiosity(argc, argv))
+                fputs(cli_radiosity_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
-            if (strcmp(v, "pt") != 0) {
-                cli_error("--method: unknown method '%s' (available: pt)", v);
+            if (!strcmp(v, "pt"))
+                o->desc.method = IL_METHOD_PT;
+            else if (!strcmp(v, "radiosity"))
+                o->desc.method = IL_METHOD_RADIOSITY;
+            else {
+                cli_error("--method: unknown method '%s' (available: pt, radiosity)", v);
                 return IL_EXIT_BAD_INPUT;
             }
-            o->desc.method = IL_METHOD_PT;
+            o->has_method = true;
         } else if (!strcmp(a, "--spp")) {
             VALUE();
             if (!cli_parse_u32(a, v, 1, 1u << 24, &o->desc.spp))
@@ -309,7 +339,7 @@ static int parse_options(int argc, char **argv, render_options *o)
         cli_error("render: no scene given (see 'illum render --help')");
         return IL_EXIT_USAGE;
     }
-    return IL_EXIT_OK;
+    return check_method_options(o, false);
 }
 
 /* SCENE-NAME.exr in the current directory: the file name without folder and extension. */
@@ -328,11 +358,13 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     il_render_settings rs;
     if (!il_scene_get_render_settings(scene, &rs))
         return IL_EXIT_OK;
-    if (rs.method[0] && strcmp(rs.method, "pt") != 0) {
-        cli_error("%s: unknown method '%s' in the render settings (available: pt)", o->scene,
-                  rs.method);
+    if (rs.method[0] && strcmp(rs.method, "pt") != 0 && strcmp(rs.method, "radiosity") != 0) {
+        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity)",
+                  o->scene, rs.method);
         return IL_EXIT_BAD_INPUT;
     }
+    if (rs.method[0] && !o->has_method)
+        o->desc.method = strcmp(rs.method, "radiosity") == 0 ? IL_METHOD_RADIOSITY : IL_METHOD_PT;
     if (o->width == 0 && rs.width <= 16384)
         o->width = rs.width;
     if (o->height == 0 && rs.height <= 16384)
@@ -377,7 +409,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
     il_scene_get_info(scene, &in);
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "method", "pt");
+    cJSON_AddStringToObject(j, "method", o->desc.method == IL_METHOD_RADIOSITY ? "radiosity" : "pt");
     cJSON_AddNumberToObject(j, "width", o->width);
     cJSON_AddNumberToObject(j, "height", o->height);
     cJSON_AddNumberToObject(j, "spp", rs->spp);
@@ -396,21 +428,10 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
     cJSON *outs = cJSON_AddArrayToObject(j, "outputs");
     for (int i = 0; i < o->num_outputs; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(o->outputs[i]));
-    char *text = cJSON_Print(j);
+    if (o->desc.method == IL_METHOD_RADIOSITY)
+        cli_radiosity_stats_json(j, &rs->radiosity);
+    bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
-    if (!text)
-        return false;
-    size_t n = strlen(text);
-    char *with_nl = malloc(n + 2);
-    bool ok = false;
-    if (with_nl) {
-        memcpy(with_nl, text, n);
-        with_nl[n] = '\n';
-        with_nl[n + 1] = '\0';
-        ok = cli_write_text_atomic(o->stats, with_nl);
-        free(with_nl);
-    }
-    cJSON_free(text);
     return ok;
 }
 
@@ -435,7 +456,8 @@ int cmd_render(int argc, char **argv)
     il_scene *scene = NULL;
     if ((rc = cli_load_scene(o.scene, o.quiet, &scene)) != IL_EXIT_OK)
         return rc;
-    if ((rc = apply_scene_settings(scene, &o)) != IL_EXIT_OK) {
+    if ((rc = apply_scene_settings(scene, &o)) != IL_EXIT_OK ||
+        (rc = check_method_options(&o, true)) != IL_EXIT_OK) {
         il_scene_release(scene);
         return rc;
     }
@@ -458,6 +480,12 @@ int cmd_render(int argc, char **argv)
     progress_state ps = {.draw = !o.quiet && isatty(STDERR_FILENO)};
     o.desc.progress = on_progress;
     o.desc.progress_user = &ps;
+    if (o.desc.method == IL_METHOD_RADIOSITY) {
+        /* The solve draws its own line and ends early on Ctrl-C; the camera
+         * pass after it draws the usual bar. */
+        cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
+        o.desc.radiosity = &o.rad.desc;
+    }
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old_sa);
@@ -465,6 +493,7 @@ int cmd_render(int argc, char **argv)
     il_render_stats rs = {0};
     il_status st = il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
+    cli_radiosity_end_progress(&o.rad);
     if (ps.drawn)
         fputc('\n', stderr);
     if (st != IL_OK) {
@@ -486,6 +515,8 @@ int cmd_render(int argc, char **argv)
         return cli_exit_for(st);
     }
     if (!o.quiet) {
+        if (o.desc.method == IL_METHOD_RADIOSITY)
+            cli_radiosity_summary(&rs.radiosity);
         fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
                 rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);
@@ -499,7 +530,12 @@ int cmd_render(int argc, char **argv)
     il_film_release(film);
     il_scene_release(scene);
     if (rc == IL_EXIT_OK && interrupted) {
-        cli_error("interrupted after %u spp; the image so far is written", rs.spp);
+        if (o.desc.method == IL_METHOD_RADIOSITY)
+            cli_error("interrupted: the radiosity solve stopped at %.3g%% unshot; the image of "
+                      "that solution is written",
+                      100.0 * rs.radiosity.unshot_fraction);
+        else
+            cli_error("interrupted after %u spp; the image so far is written", rs.spp);
         return IL_EXIT_INTERRUPTED;
     }
     return rc;

@@ -11,11 +11,14 @@ static const char *usage =
     "\n"
     "commands:\n"
     "  render SCENE [options]   render a scene file or a built-in scene to an image\n"
+    "  bake SCENE -o OUT.ply|OUT.glb [options]\n"
+    "                           solve with radiosity, write meshes with vertex radiance\n"
     "  info SCENE               print what a scene contains\n"
     "  compare A B [--diff D]   compare two images (RMSE, relative MSE, luminance)\n"
     "\n"
     "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
-    "scene file (docs/scene-format.md) or a built-in name: cornell, atrium.\n"
+    "scene file (docs/scene-format.md) or a built-in name: cornell, atrium,\n"
+    "simple-room, shadow-room, box-room.\n"
     "'illum COMMAND --help' lists a command's options.\n"
     "\n"
     "exit status: 0 success, 1 bad input (scene, file, option value), 2 usage error,\n"
@@ -37,6 +40,7 @@ int main(int argc, char **argv)
             if (!strcmp(argv[2], "render")) return cmd_render(2, sub);
             if (!strcmp(argv[2], "info")) return cmd_info(2, sub);
             if (!strcmp(argv[2], "compare")) return cmd_compare(2, sub);
+            if (!strcmp(argv[2], "bake")) return cmd_bake(2, sub);
         }
         fputs(usage, stdout);
         return IL_EXIT_OK;
@@ -51,6 +55,8 @@ int main(int argc, char **argv)
         return cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare"))
         return cmd_compare(argc - 1, argv + 1);
+    if (!strcmp(cmd, "bake"))
+        return cmd_bake(argc - 1, argv + 1);
     cli_error("unknown command '%s' (try 'illum --help')", cmd);
     return IL_EXIT_USAGE;
 }

@@ -13,6 +13,9 @@ typedef struct builtin_entry {
 static const builtin_entry builtins[] = {
     {"cornell", il_builtin_cornell},
     {"atrium", il_builtin_atrium},
+    {"simple-room", il_builtin_simple_room},
+    {"shadow-room", il_builtin_shadow_room},
+    {"box-room", il_builtin_box_room},
 };
 
 static const builtin_entry *find_builtin(const char *name)
@@ -34,7 +37,8 @@ il_status il_builtin_load(il_scene *scene, const char *name, il_error *err)
 {
     const builtin_entry *b = find_builtin(name);
     if (!b)
-        return il_fail(err, IL_ERR_INVALID, "'%s' is not a built-in scene (cornell, atrium)",
+        return il_fail(err, IL_ERR_INVALID, "'%s' is not a built-in scene (cornell, atrium, simple-room, "
+                       "shadow-room, box-room)",
                        name ? name : "(null)");
     return b->build(scene, err);
 }

@@ -5,7 +5,8 @@
 #include <stdbool.h>
 #include "illum/illum.h"
 
-/* True when `name` is a built-in scene ("cornell", "atrium"). */
+/* True when `name` is a built-in scene ("cornell", "atrium", "simple-room",
+ * "shadow-room", "box-room"). */
 bool il_builtin_exists(const char *name);
 /* Fills an empty scene with the built-in scene of that name. */
 il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
@@ -16,5 +17,12 @@ il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
 il_status il_builtin_cornell(il_scene *scene, il_error *err);
 /* A two-storey arcaded courtyard, about 250,000 triangles, sun + lamps. */
 il_status il_builtin_atrium(il_scene *scene, il_error *err);
+/* The radiosity rooms (builtin_rooms.c, docs/builtin-scenes.md): a 4 x 3 x 4 m
+ * room with a red left and a green right wall lit by its whole ceiling; the
+ * same with a slab at half height; a room with a quarter-ceiling lamp and
+ * four coloured boxes. */
+il_status il_builtin_simple_room(il_scene *scene, il_error *err);
+il_status il_builtin_shadow_room(il_scene *scene, il_error *err);
+il_status il_builtin_box_room(il_scene *scene, il_error *err);
 
 #endif

@@ -1,0 +1,195 @@
+/* The radiosity options shared by `illum render --method radiosity` and
+ * `illum bake`: parsing into an il_radiosity_desc, their help text, the
+ * solver's progress line and the "radiosity" object of --stats JSON
+ * (docs/radiosity.md lists every option, its default and range); and the
+ * stats-file writer both commands use. */
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cjson/cJSON.h>
+
+#include "cli/cli.h"
+
+const char cli_radiosity_help[] =
+    "radiosity options (--method radiosity; docs/radiosity.md):\n"
+    "  --patch-size METRES    largest patch edge (default: automatic, about 4,000\n"
+    "                         patches over the scene)\n"
+    "  --subdiv LEVELS        uniform subdivision instead, 1 to 10 levels; each splits\n"
+    "                         every triangle or quad into 4\n"
+    "  --form-factors hemicube|raycast\n"
+    "                         form-factor back-end (default hemicube)\n"
+    "  --hemicube-res N       hemicube pixels along the top face, 8 to 4096 (default 256)\n"
+    "  --ff-samples N         raycast: rays per patch, 1 to 16777216 (default 4096)\n"
+    "  --solver shooting|jacobi|gauss-seidel\n"
+    "                         progressive shooting (default) or gathering sweeps\n"
+    "  --tolerance X          stop when unshot / initial power < X, above 0 to 1\n"
+    "                         (default 0.01)\n"
+    "  --max-steps N          at most N shots or sweeps (default: no limit)\n"
+    "  --ff-cache-mb N        memory for cached form-factor rows, 1 to 1048576 MB\n"
+    "                         (default 1024)\n"
+    "  --adaptive THRESHOLD   after the first solve, split patches whose radiance\n"
+    "                         differs from a neighbour's by more than this fraction\n"
+    "                         and solve again (default: off)\n";
+
+/* Stores the option's name so a later check can say which one was given. */
+static void note(cli_radiosity_options *o, const char *name)
+{
+    o->given = true;
+    if (!o->first)
+        o->first = name;
+}
+
+bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *o, int *rc)
+{
+    const char *a = argv[*i];
+    static const char *const names[] = {"--patch-size", "--subdiv",     "--form-factors",
+                                        "--hemicube-res", "--ff-samples", "--solver",
+                                        "--tolerance",  "--max-steps",  "--ff-cache-mb",
+                                        "--adaptive"};
+    const char *name = NULL;
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strcmp(a, names[k]))
+            name = names[k];
+    if (!name)
+        return false;
+    *rc = IL_EXIT_OK;
+    const char *v = cli_value(argc, argv, i);
+    if (!v) {
+        *rc = IL_EXIT_USAGE;
+        return true;
+    }
+    note(o, name);
+    il_radiosity_desc *d = &o->desc;
+    bool ok = true;
+    double x;
+    if (!strcmp(name, "--patch-size")) {
+        ok = cli_parse_double(name, v, 1e-4, 1e4, &x);
+        d->patch_size = (float)x;
+    } else if (!strcmp(name, "--subdiv")) {
+        ok = cli_parse_u32(name, v, 1, 10, &d->subdivisions);
+    } else if (!strcmp(name, "--form-factors")) {
+        if (!strcmp(v, "hemicube"))
+            d->form_factors = IL_FF_HEMICUBE;
+        else if (!strcmp(v, "raycast"))
+            d->form_factors = IL_FF_RAYCAST;
+        else {
+            cli_error("--form-factors: expected hemicube or raycast, got '%s'", v);
+            ok = false;
+        }
+    } else if (!strcmp(name, "--hemicube-res")) {
+        ok = cli_parse_u32(name, v, 8, 4096, &d->hemicube_resolution);
+    } else if (!strcmp(name, "--ff-samples")) {
+        ok = cli_parse_u32(name, v, 1, 1u << 24, &d->ray_samples);
+    } else if (!strcmp(name, "--solver")) {
+        if (!strcmp(v, "shooting"))
+            d->solver = IL_SOLVER_SHOOTING;
+        else if (!strcmp(v, "jacobi"))
+            d->solver = IL_SOLVER_JACOBI;
+        else if (!strcmp(v, "gauss-seidel"))
+            d->solver = IL_SOLVER_GAUSS_SEIDEL;
+        else {
+            cli_error("--solver: expected shooting, jacobi or gauss-seidel, got '%s'", v);
+            ok = false;
+        }
+    } else if (!strcmp(name, "--tolerance")) {
+        /* 0 would mean "the default" to the library: refuse it here. */
+        ok = cli_parse_double(name, v, 1e-9, 1.0, &x);
+        d->tolerance = (float)x;
+    } else if (!strcmp(name, "--max-steps")) {
+        ok = cli_parse_u32(name, v, 1, UINT32_MAX, &d->max_steps);
+    } else if (!strcmp(name, "--ff-cache-mb")) {
+        ok = cli_parse_u32(name, v, 1, 1u << 20, &d->ff_cache_mb);
+    } else if (!strcmp(name, "--adaptive")) {
+        ok = cli_parse_double(name, v, 1e-6, 1e6, &x);
+        d->adaptive_threshold = (float)x;
+    }
+    if (!ok)
+        *rc = IL_EXIT_BAD_INPUT;
+    return true;
+}
+
+bool cli_help_wants_radiosity(int argc, char **argv)
+{
+    for (int k = 1; k + 1 < argc; k++)
+        if (!strcmp(argv[k], "--method") && !strcmp(argv[k + 1], "radiosity"))
+            return true;
+    return false;
+}
+
+/* "radiosity: step N, unshot X%" redrawn in place on a terminal, at most
+ * ten times a second (a solve may take hundreds of thousands of steps). */
+static bool on_step(const il_radiosity_progress *p, void *user)
+{
+    cli_radiosity_options *o = user;
+    if (o->draw && (!o->drawn || p->seconds - o->last_draw >= 0.1)) {
+        o->last_draw = p->seconds;
+        fprintf(stderr, "\rradiosity: step %u, unshot %.2f%%, %u patches, %.1fs   ", p->step,
+                100.0 * p->unshot_fraction, p->num_patches, p->seconds);
+        fflush(stderr);
+        o->drawn = true;
+    }
+    return !(o->stop && *o->stop);
+}
+
+void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
+                                    const volatile sig_atomic_t *stop)
+{
+    o->draw = !quiet && isatty(STDERR_FILENO);
+    o->stop = stop;
+    o->desc.on_step = on_step;
+    o->desc.on_step_user = o;
+}
+
+void cli_radiosity_end_progress(cli_radiosity_options *o)
+{
+    if (o->drawn)
+        fputc('\n', stderr);
+    o->drawn = false;
+}
+
+void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
+{
+    cJSON *r = cJSON_AddObjectToObject(parent, "radiosity");
+    cJSON_AddNumberToObject(r, "patches", s->num_patches);
+    cJSON_AddNumberToObject(r, "surfaces", s->num_surfaces);
+    cJSON_AddNumberToObject(r, "steps", s->steps);
+    cJSON_AddNumberToObject(r, "unshot_fraction", s->unshot_fraction);
+    cJSON_AddNumberToObject(r, "seconds_mesh", s->seconds_mesh);
+    cJSON_AddNumberToObject(r, "seconds_form_factors", s->seconds_form_factors);
+    cJSON_AddNumberToObject(r, "seconds_solve", s->seconds_solve);
+    cJSON_AddNumberToObject(r, "seconds_render", s->seconds_render);
+    cJSON_AddNumberToObject(r, "rows_computed", (double)s->rows_computed);
+    cJSON_AddNumberToObject(r, "cache_bytes", (double)s->cache_bytes);
+    cJSON_AddNumberToObject(r, "peak_bytes", (double)s->peak_bytes);
+}
+
+void cli_radiosity_summary(const il_radiosity_stats *s)
+{
+    fprintf(stderr,
+            "illum: radiosity: %u patches, %u steps, unshot %.3g%% (mesh %.2f s, form factors "
+            "%.2f s, solve %.2f s, render %.2f s)\n",
+            s->num_patches, s->steps, 100.0 * s->unshot_fraction, s->seconds_mesh,
+            s->seconds_form_factors, s->seconds_solve, s->seconds_render);
+}
+
+bool cli_write_json(const char *path, cJSON *j)
+{
+    char *text = cJSON_Print(j);
+    if (!text) {
+        cli_error("%s: out of memory", path);
+        return false;
+    }
+    size_t n = strlen(text);
+    char *with_nl = cJSON_malloc(n + 2);
+    bool ok = false;
+    if (with_nl) {
+        memcpy(with_nl, text, n);
+        with_nl[n] = '\n';
+        with_nl[n + 1] = '\0';
+        ok = cli_write_text_atomic(path, with_nl);
+        cJSON_free(with_nl);
+    }
+    cJSON_free(text);
+    return ok;
+}

@@ -1,0 +1,213 @@
+/* `illum bake SCENE -o OUT.ply|OUT.glb|OUT.gltf`: solve the scene with a
+ * method that can bake (radiosity) and write the meshes with per-vertex
+ * radiance (il_bake, il_bake_write; docs/radiosity.md, "Baking"). */
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+#include <cjson/cJSON.h>
+
+#include "cli/cli.h"
+
+static const char *help =
+    "usage: illum bake SCENE -o OUT.ply|OUT.glb|OUT.gltf [options]\n"
+    "\n"
+    "Solves SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
+    "atrium, simple-room, shadow-room, box-room) and writes its meshes with the\n"
+    "outgoing radiance at every vertex: PLY with 8-bit sRGB colours and float\n"
+    "properties radiance_r/g/b, or glTF 2.0 with COLOR_0 (display colours) and\n"
+    "COLOR_1 (float radiance).\n"
+    "\n"
+    "  -o, --output FILE      the output, by extension: .ply .glb .gltf (required)\n"
+    "  --method radiosity     the method (radiosity, the default and only one so far)\n"
+    "  --exposure EV          8-bit/display colours: radiance * 2^EV (default 0)\n"
+    "  --seed S               random seed (default 0)\n"
+    "  --threads T            worker threads (default: all cores)\n"
+    "  --stats FILE           write statistics as JSON\n"
+    "  --quiet                no progress and no warnings\n"
+    "\n";
+
+typedef struct bake_options {
+    const char *scene;
+    const char *output;
+    const char *stats;
+    il_render_desc desc;
+    il_bake_write_desc write;
+    bool quiet;
+    cli_radiosity_options rad;
+} bake_options;
+
+static volatile sig_atomic_t interrupted = 0;
+static void on_sigint(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static bool known_bake_extension(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    return dot && (!strcasecmp(dot, ".ply") || !strcasecmp(dot, ".glb") || !strcasecmp(dot, ".gltf"));
+}
+
+static int parse_options(int argc, char **argv, bake_options *o)
+{
+    o->desc.method = IL_METHOD_RADIOSITY;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = NULL;
+        int rad_rc;
+        if (cli_radiosity_option(argc, argv, &i, &o->rad, &rad_rc)) {
+            if (rad_rc != IL_EXIT_OK)
+                return rad_rc;
+            continue;
+        }
+#define VALUE()                                   \
+    do {                                          \
+        if (!(v = cli_value(argc, argv, &i)))     \
+            return IL_EXIT_USAGE;                 \
+    } while (0)
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            fputs(cli_radiosity_help, stdout);
+            return -1;
+        } else if (!strcmp(a, "--method")) {
+            VALUE();
+            if (strcmp(v, "radiosity") != 0) {
+                cli_error("--method: '%s' cannot bake (available: radiosity)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            VALUE();
+            if (o->output) {
+                cli_error("bake: one output at a time ('%s' is extra)", v);
+                return IL_EXIT_USAGE;
+            }
+            if (!known_bake_extension(v)) {
+                cli_error("%s: unknown bake format (use .ply, .glb or .gltf)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+            o->output = v;
+        } else if (!strcmp(a, "--exposure")) {
+            VALUE();
+            double ev;
+            if (!cli_parse_double(a, v, -50.0, 50.0, &ev))
+                return IL_EXIT_BAD_INPUT;
+            o->write.exposure = (float)ev;
+        } else if (!strcmp(a, "--seed")) {
+            VALUE();
+            if (!cli_parse_u64(a, v, &o->desc.seed))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--threads")) {
+            VALUE();
+            uint32_t t;
+            if (!cli_parse_u32(a, v, 1, 1024, &t))
+                return IL_EXIT_BAD_INPUT;
+            o->desc.threads = (int)t;
+        } else if (!strcmp(a, "--stats")) {
+            VALUE();
+            o->stats = v;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o->quiet = true;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            cli_error("bake: unknown option '%s' (see 'illum bake --help')", a);
+            return IL_EXIT_USAGE;
+        } else if (!o->scene) {
+            o->scene = a;
+        } else {
+            cli_error("bake: one scene at a time ('%s' is extra)", a);
+            return IL_EXIT_USAGE;
+        }
+#undef VALUE
+    }
+    if (!o->scene) {
+        cli_error("bake: no scene given (see 'illum bake --help')");
+        return IL_EXIT_USAGE;
+    }
+    if (!o->output) {
+        cli_error("bake: no output given: -o OUT.ply, OUT.glb or OUT.gltf");
+        return IL_EXIT_USAGE;
+    }
+    return IL_EXIT_OK;
+}
+
+static bool write_stats(const bake_options *o, const il_bake_result *b, double wall)
+{
+    uint64_t vertices = 0, triangles = 0;
+    for (uint32_t i = 0; i < b->num_meshes; i++) {
+        vertices += b->meshes[i].num_vertices;
+        triangles += b->meshes[i].num_triangles;
+    }
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scene", o->scene);
+    cJSON_AddStringToObject(j, "method", "radiosity");
+    cJSON_AddStringToObject(j, "output", o->output);
+    cJSON_AddNumberToObject(j, "meshes", b->num_meshes);
+    cJSON_AddNumberToObject(j, "vertices", (double)vertices);
+    cJSON_AddNumberToObject(j, "triangles", (double)triangles);
+    cJSON_AddNumberToObject(j, "seed", (double)o->desc.seed);
+    cJSON_AddNumberToObject(j, "threads", o->desc.threads);
+    cJSON_AddNumberToObject(j, "exposure", o->write.exposure);
+    cJSON_AddNumberToObject(j, "total_seconds", wall);
+    cJSON_AddBoolToObject(j, "interrupted", interrupted != 0);
+    cli_radiosity_stats_json(j, &b->stats.radiosity);
+    bool ok = cli_write_json(o->stats, j);
+    cJSON_Delete(j);
+    return ok;
+}
+
+int cmd_bake(int argc, char **argv)
+{
+    double t0 = now_seconds();
+    bake_options o = {0};
+    int rc = parse_options(argc, argv, &o);
+    if (rc == -1)
+        return IL_EXIT_OK;
+    if (rc != IL_EXIT_OK)
+        return rc;
+
+    il_scene *scene = NULL;
+    if ((rc = cli_load_scene(o.scene, o.quiet, &scene)) != IL_EXIT_OK)
+        return rc;
+
+    cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
+    o.desc.radiosity = &o.rad.desc;
+    struct sigaction sa = {0}, old_sa;
+    sa.sa_handler = on_sigint;
+    sigaction(SIGINT, &sa, &old_sa);
+    il_error err = {0};
+    il_bake_result *bake = NULL;
+    il_status st = il_bake(scene, &o.desc, &bake, &err);
+    sigaction(SIGINT, &old_sa, NULL);
+    cli_radiosity_end_progress(&o.rad);
+    if (st == IL_OK)
+        st = il_bake_write(bake, o.output, &o.write, &err);
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        il_bake_release(bake);
+        il_scene_release(scene);
+        return cli_exit_for(st);
+    }
+    if (!o.quiet) {
+        cli_radiosity_summary(&bake->stats.radiosity);
+        fprintf(stderr, "illum: baked %u meshes -> %s\n", bake->num_meshes, o.output);
+    }
+    if (o.stats && !write_stats(&o, bake, now_seconds() - t0))
+        rc = IL_EXIT_BAD_INPUT;
+    il_bake_release(bake);
+    il_scene_release(scene);
+    if (rc == IL_EXIT_OK && interrupted) {
+        cli_error("interrupted: the solve stopped early; the bake so far is written");
+        return IL_EXIT_INTERRUPTED;
+    }
+    return rc;
+}

@@ -1,0 +1,35 @@
+/* Internals of the solvers (rad_solve*.c): blocks of form-factor rows fetched
+ * in parallel, from the row cache or computed (one il_ff_work per thread). */
+#ifndef IL_METHODS_RADIOSITY_RAD_SOLVE_H
+#define IL_METHODS_RADIOSITY_RAD_SOLVE_H
+
+#include "methods/radiosity/rad.h"
+
+typedef struct il_rad_rows {
+    uint32_t cap;              /* most rows per block */
+    int threads;
+    il_ff_work **work;         /* one per thread */
+    const il_ff_row **row;     /* per slot: the fetched row */
+    il_ff_row *copy;           /* per slot: a copy of a computed row (the cache
+                                  may not keep it, and `work` is reused) */
+    uint32_t *copy_cap;
+} il_rad_rows;
+
+il_status il_rad_rows_init(il_rad_rows *rows, const il_ff *ff, uint32_t cap, int threads,
+                           il_error *err);
+void il_rad_rows_free(il_rad_rows *rows);
+/* Fetches the rows of `count` (<= cap) patches into rows->row[0..count):
+ * patches[k], or first + k when patches is NULL.  Rows not in the cache are
+ * computed in parallel and offered to it.  Adds the wall time to
+ * stats->seconds_form_factors and the computed rows to stats->rows_computed. */
+il_status il_rad_rows_fetch(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cache,
+                            const uint32_t *patches, uint32_t first, uint32_t count,
+                            il_radiosity_stats *stats, il_error *err);
+/* Bytes held by the row copies. */
+size_t il_rad_rows_bytes(const il_rad_rows *rows);
+
+/* Sum_i A_i lum(v_i): the luminance power of a per-patch radiance array
+ * (up to the factor pi), summed in patch order. */
+double il_rad_power(const il_rad_mesh *mesh, const il_vec3 *v);
+
+#endif

@@ -1,0 +1,159 @@
+/* Gathering: iterative solution of the radiosity system in radiance,
+ *     L_i = Ld_i + rho_i sum_j F_ij L_j
+ * (Cohen & Wallace 1993, section 5.3: Jacobi and Gauss-Seidel iteration).
+ *
+ * Jacobi: every patch gathers from the previous sweep's values; the patches
+ * of a block are updated in parallel.  Gauss-Seidel: patches are updated in
+ * place in patch order, each seeing the values already updated in this
+ * sweep (sequential; the rows are still computed in parallel ahead of use, a
+ * block at a time).
+ *
+ * Convergence: the power the sweep changed, sum_i A_i lum(|L_new - L_old|),
+ * over the initial power sum_i A_i lum(Ld_i), below the tolerance.  Sums are
+ * formed in patch order, so the result does not depend on the thread count.
+ * After the solve sol->unshot holds the last sweep's change (what a further
+ * sweep would still roughly add), for display and diagnostics. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/radiosity/rad_solve.h"
+
+/* Rows per block: enough to keep every thread busy, few enough that copies
+ * of computed rows stay small. */
+static uint32_t block_size(int threads, uint32_t n)
+{
+    uint32_t b = (uint32_t)threads * 8u;
+    b = b < 16u ? 16u : (b > 256u ? 256u : b);
+    return n < b ? (n ? n : 1u) : b;
+}
+
+/* Ld_i + rho_i sum_j F_ij L_j. */
+static il_vec3 gather(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i,
+                      const il_vec3 *direct, const il_vec3 *L)
+{
+    double r = 0.0, g = 0.0, b = 0.0;
+    for (uint32_t k = 0; k < row->count; k++) {
+        uint32_t j = row->index[k];
+        if (j == i)
+            continue;
+        double f = row->value[k];
+        r += f * L[j].x;
+        g += f * L[j].y;
+        b += f * L[j].z;
+    }
+    il_vec3 rho = mesh->patches[i].rho;
+    return v3_add(direct[i], v3_mul(rho, v3((float)r, (float)g, (float)b)));
+}
+
+static il_vec3 v3_abs(il_vec3 a) { return v3(fabsf(a.x), fabsf(a.y), fabsf(a.z)); }
+
+il_status il_rad_solve_gathering(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+                                 const il_rad_settings *settings, il_rad_solution *sol,
+                                 il_radiosity_stats *stats, il_error *err)
+{
+    uint32_t n = mesh->num_patches;
+    bool jacobi = settings->solver == IL_SOLVER_JACOBI;
+    double t0 = omp_get_wtime();
+    for (uint32_t i = 0; i < n; i++) {
+        sol->radiance[i] = sol->direct[i];
+        sol->unshot[i] = v3s(0.0f);
+    }
+    sol->steps = 0;
+    sol->ambient = v3s(0.0f);
+    double p0 = il_rad_power(mesh, sol->direct);
+
+    size_t nn = n ? n : 1u;
+    /* Jacobi writes the new sweep beside the old one; both keep the change. */
+    il_vec3 *next = jacobi ? il_malloc(nn * sizeof *next, err) : NULL;
+    double *change = il_malloc(nn * sizeof *change, err);
+    float *display = settings->on_step ? il_malloc(nn * 3 * sizeof *display, err) : NULL;
+    if ((jacobi && !next) || !change || (settings->on_step && !display)) {
+        free(next);
+        free(change);
+        free(display);
+        return IL_ERR_MEMORY;
+    }
+    uint32_t bs = block_size(settings->threads, n);
+    il_rad_rows rows;
+    il_status st = il_rad_rows_init(&rows, ff, bs, settings->threads, err);
+    if (st != IL_OK) {
+        free(next);
+        free(change);
+        free(display);
+        return st;
+    }
+
+    uint32_t steps = 0;
+    double frac = p0 > 0.0 ? 1.0 : 0.0;
+    while (p0 > 0.0 && (settings->max_steps == 0 || steps < settings->max_steps)) {
+        il_vec3 *L = sol->radiance;
+        for (uint32_t first = 0; first < n && st == IL_OK; first += bs) {
+            uint32_t count = n - first < bs ? n - first : bs;
+            st = il_rad_rows_fetch(&rows, ff, cache, NULL, first, count, stats, err);
+            if (st != IL_OK)
+                break;
+            if (jacobi) {
+#pragma omp parallel for schedule(static) num_threads(settings->threads)
+                for (uint32_t k = 0; k < count; k++) {
+                    uint32_t i = first + k;
+                    next[i] = gather(mesh, rows.row[k], i, sol->direct, L);
+                }
+            } else {
+                for (uint32_t k = 0; k < count; k++) {
+                    uint32_t i = first + k;
+                    il_vec3 v = gather(mesh, rows.row[k], i, sol->direct, L);
+                    il_vec3 d = v3_sub(v, L[i]);
+                    sol->unshot[i] = d;
+                    change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(d));
+                    L[i] = v;
+                }
+            }
+        }
+        if (st != IL_OK)
+            break;
+        if (jacobi)
+            for (uint32_t i = 0; i < n; i++) {
+                il_vec3 d = v3_sub(next[i], L[i]);
+                sol->unshot[i] = d;
+                change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(d));
+                L[i] = next[i];
+            }
+        double sum = 0.0;
+        for (uint32_t i = 0; i < n; i++)
+            sum += change[i];
+        frac = sum / p0;
+        steps++;
+        if (settings->on_step) {
+            for (uint32_t i = 0; i < n; i++) {
+                display[3 * (size_t)i + 0] = L[i].x;
+                display[3 * (size_t)i + 1] = L[i].y;
+                display[3 * (size_t)i + 2] = L[i].z;
+            }
+            il_radiosity_progress prog = {
+                .step = steps,
+                .num_patches = n,
+                .unshot_fraction = frac,
+                .seconds = omp_get_wtime() - t0,
+                .radiance = display,
+            };
+            if (!settings->on_step(&prog, settings->on_step_user))
+                break;
+        }
+        if (frac < settings->tolerance)
+            break;
+    }
+    sol->steps = steps;
+    sol->unshot_fraction = frac;
+    size_t working = il_rad_rows_bytes(&rows) + nn * sizeof *change +
+                     (next ? nn * sizeof *next : 0) + (display ? nn * 3 * sizeof *display : 0);
+    if (working > stats->peak_bytes)
+        stats->peak_bytes = working;
+    il_rad_rows_free(&rows);
+    free(next);
+    free(change);
+    free(display);
+    return st;
+}

@@ -1,0 +1,192 @@
+/* Progressive refinement by shooting (Cohen, Chen, Wallace, Greenberg 1988,
+ * "A Progressive Refinement Approach to Fast Radiosity Image Generation").
+ *
+ * Every patch starts with radiance = unshot = direct (its emission plus the
+ * light of point/spot/directional lights and the sky).  A shot from patch i
+ * distributes its unshot radiance dL_i to every patch j it sees (section 3,
+ * "shooting"; with reciprocity A_j F_ji = A_i F_ij):
+ *     dL_j += rho_j * F_ji * dL_i = rho_j * F_ij * (A_i / A_j) * dL_i,
+ * and sets dL_i = 0.  The patches with the most unshot power A_i lum(dL_i)
+ * go first (section 3.1, "sorting").
+ *
+ * Parallelism and determinism: each step takes a fixed batch of
+ * IL_RAD_SHOOT_BATCH shooters (whatever the thread count), computes their
+ * rows in parallel, then shoots them one after another in order, each with
+ * its unshot radiance at that moment.  So the result does not depend on the
+ * number of threads.
+ *
+ * Display (section 3.2, "ambient term"): ambient = R * sum_i(dL_i A_i) /
+ * sum_i(A_i), with R = 1 / (1 - rho_avg) the overall interreflection factor,
+ * rho_avg the area-weighted mean reflectance; a patch shows L_i + rho_i *
+ * ambient.  Only handed to the callback (and kept in sol->ambient); the
+ * result itself has no ambient term. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/radiosity/rad_solve.h"
+
+#define IL_RAD_SHOOT_BATCH 8u
+
+typedef struct shoot_scan {
+    uint32_t shooter[IL_RAD_SHOOT_BATCH]; /* largest unshot power first */
+    uint32_t count;
+    double unshot_power;                  /* sum_i A_i lum(dL_i) */
+    il_vec3 unshot_sum;                   /* sum_i A_i dL_i per channel */
+} shoot_scan;
+
+/* One pass over the patches: the total unshot power and the patches with the
+ * most of it (ties go to the lower index, so the choice is deterministic). */
+static void scan_unshot(const il_rad_mesh *mesh, const il_vec3 *unshot, shoot_scan *s)
+{
+    double top[IL_RAD_SHOOT_BATCH];
+    double sum_r = 0.0, sum_g = 0.0, sum_b = 0.0, total = 0.0;
+    s->count = 0;
+    for (uint32_t i = 0; i < mesh->num_patches; i++) {
+        double a = mesh->patches[i].area;
+        il_vec3 u = unshot[i];
+        double p = a * (double)il_luminance(u);
+        sum_r += a * u.x;
+        sum_g += a * u.y;
+        sum_b += a * u.z;
+        total += p;
+        if (!(p > 0.0))
+            continue;
+        if (s->count == IL_RAD_SHOOT_BATCH && !(p > top[IL_RAD_SHOOT_BATCH - 1]))
+            continue;
+        /* Insertion into the sorted list of the best. */
+        uint32_t k = s->count < IL_RAD_SHOOT_BATCH ? s->count++ : IL_RAD_SHOOT_BATCH - 1;
+        while (k > 0 && p > top[k - 1]) {
+            top[k] = top[k - 1];
+            s->shooter[k] = s->shooter[k - 1];
+            k--;
+        }
+        top[k] = p;
+        s->shooter[k] = i;
+    }
+    s->unshot_power = total;
+    s->unshot_sum = v3((float)sum_r, (float)sum_g, (float)sum_b);
+}
+
+/* Shoots patch i's unshot radiance along its row. */
+static void shoot(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i, il_rad_solution *sol)
+{
+    il_vec3 u = sol->unshot[i];
+    sol->unshot[i] = v3s(0.0f);
+    float ai = mesh->patches[i].area;
+    for (uint32_t k = 0; k < row->count; k++) {
+        uint32_t j = row->index[k];
+        if (j == i)
+            continue; /* a planar patch does not see itself */
+        const il_rad_patch *pj = &mesh->patches[j];
+        if (!(pj->area > 0.0f))
+            continue;
+        float s = row->value[k] * ai / pj->area;
+        il_vec3 d = v3_scale(v3_mul(pj->rho, u), s);
+        sol->radiance[j] = v3_add(sol->radiance[j], d);
+        sol->unshot[j] = v3_add(sol->unshot[j], d);
+    }
+}
+
+/* R = 1 / (1 - rho_avg) per channel (Cohen et al. 1988, eq. 6). */
+static il_vec3 interreflection(const il_rad_mesh *mesh)
+{
+    double r = 0.0, g = 0.0, b = 0.0, area = 0.0;
+    for (uint32_t i = 0; i < mesh->num_patches; i++) {
+        const il_rad_patch *p = &mesh->patches[i];
+        r += (double)p->area * p->rho.x;
+        g += (double)p->area * p->rho.y;
+        b += (double)p->area * p->rho.z;
+        area += p->area;
+    }
+    if (!(area > 0.0))
+        return v3s(1.0f);
+    /* A white closed room would make R infinite: cap rho_avg. */
+    double rr = fmin(r / area, 0.999), gg = fmin(g / area, 0.999), bb = fmin(b / area, 0.999);
+    return v3((float)(1.0 / (1.0 - rr)), (float)(1.0 / (1.0 - gg)), (float)(1.0 / (1.0 - bb)));
+}
+
+static il_vec3 ambient_term(il_vec3 R, il_vec3 unshot_sum, double total_area)
+{
+    float inv = total_area > 0.0 ? (float)(1.0 / total_area) : 0.0f;
+    return v3_scale(v3_mul(R, unshot_sum), inv);
+}
+
+il_status il_rad_solve_shooting(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+                                const il_rad_settings *settings, il_rad_solution *sol,
+                                il_radiosity_stats *stats, il_error *err)
+{
+    uint32_t n = mesh->num_patches;
+    double t0 = omp_get_wtime();
+    for (uint32_t i = 0; i < n; i++)
+        sol->radiance[i] = sol->unshot[i] = sol->direct[i];
+    sol->steps = 0;
+    sol->ambient = v3s(0.0f);
+
+    double total_area = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        total_area += mesh->patches[i].area;
+    il_vec3 R = interreflection(mesh);
+    double p0 = il_rad_power(mesh, sol->direct);
+
+    float *display = NULL;
+    if (settings->on_step) {
+        display = il_malloc((size_t)(n ? n : 1) * 3 * sizeof(float), err);
+        if (!display)
+            return IL_ERR_MEMORY;
+    }
+    il_rad_rows rows;
+    il_status st = il_rad_rows_init(&rows, ff, IL_RAD_SHOOT_BATCH, settings->threads, err);
+    if (st != IL_OK) {
+        free(display);
+        return st;
+    }
+
+    shoot_scan scan;
+    scan_unshot(mesh, sol->unshot, &scan);
+    double frac = p0 > 0.0 ? scan.unshot_power / p0 : 0.0;
+    uint32_t steps = 0;
+    while (p0 > 0.0 && frac >= settings->tolerance && scan.count > 0 &&
+           (settings->max_steps == 0 || steps < settings->max_steps)) {
+        uint32_t batch = scan.count;
+        if (settings->max_steps && settings->max_steps - steps < batch)
+            batch = settings->max_steps - steps;
+        st = il_rad_rows_fetch(&rows, ff, cache, scan.shooter, 0, batch, stats, err);
+        if (st != IL_OK)
+            break;
+        for (uint32_t k = 0; k < batch; k++)
+            shoot(mesh, rows.row[k], scan.shooter[k], sol);
+        steps += batch;
+        scan_unshot(mesh, sol->unshot, &scan);
+        frac = scan.unshot_power / p0;
+        if (settings->on_step) {
+            il_vec3 amb = ambient_term(R, scan.unshot_sum, total_area);
+            for (uint32_t i = 0; i < n; i++) {
+                il_vec3 c = v3_add(sol->radiance[i], v3_mul(mesh->patches[i].rho, amb));
+                display[3 * (size_t)i + 0] = c.x;
+                display[3 * (size_t)i + 1] = c.y;
+                display[3 * (size_t)i + 2] = c.z;
+            }
+            il_radiosity_progress prog = {
+                .step = steps,
+                .num_patches = n,
+                .unshot_fraction = frac,
+                .seconds = omp_get_wtime() - t0,
+                .radiance = display,
+            };
+            if (!settings->on_step(&prog, settings->on_step_user))
+                break;
+        }
+    }
+    sol->steps = steps;
+    sol->unshot_fraction = frac;
+    sol->ambient = ambient_term(R, scan.unshot_sum, total_area);
+    size_t working = il_rad_rows_bytes(&rows) + (display ? (size_t)n * 3 * sizeof(float) : 0);
+    if (working > stats->peak_bytes)
+        stats->peak_bytes = working;
+    il_rad_rows_free(&rows);
+    free(display);
+    return st;
+}
