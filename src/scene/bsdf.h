@@ -35,4 +35,15 @@ bool il_bsdf_sample_dir(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u, i
 /* True when every lobe is a delta (MIRROR, DIELECTRIC): skip light sampling. */
 bool il_bsdf_is_delta(const il_bsdf *b);
 
+/* Shading normals make the two hemispheres of ng and ns disagree near the
+ * silhouette.  A direction pair that is a reflection for one normal and a
+ * transmission for the other would leak light through the surface (Veach
+ * 1997, 5.3.2): integrators drop such samples. */
+static inline bool il_sides_agree(const il_surface *s, il_vec3 wo, il_vec3 wi)
+{
+    float g = v3_dot(wo, s->ng) * v3_dot(wi, s->ng);
+    float n = v3_dot(wo, s->ns) * v3_dot(wi, s->ns);
+    return (g > 0.0f) == (n > 0.0f) && g != 0.0f;
+}
+
 #endif

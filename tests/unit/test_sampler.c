@@ -4,7 +4,7 @@
 
 #include "check.h"
 #include "core/sampler.h"
-#include "methods/pt/pt.h"
+#include "methods/camera_pass.h"
 
 /* Each of the 2^k elementary intervals [a/2^j, (a+1)/2^j) x [b/2^(k-j), (b+1)/2^(k-j))
  * of every shape j = 0..k holds exactly one of the 2^k points. */
@@ -138,7 +138,7 @@ int main(void)
      * Gaussian's moments: mean 0 and variance
      * sigma^2 (1 - 2 a phi(a) / (2 Phi(a) - 1)), a = r/sigma = 3, sigma = 0.5. */
     {
-        il_vec2 o = il_pt_filter_offset(IL_FILTER_BOX, v2(0.25f, 0.75f));
+        il_vec2 o = il_filter_offset(IL_FILTER_BOX, v2(0.25f, 0.75f));
         CHECK(o.x == 0.25f && o.y == 0.75f);
         const double a = 3.0, phi = exp(-0.5 * a * a) / sqrt(2.0 * 3.14159265358979323846);
         const double var = 0.25 * (1.0 - 2.0 * a * phi / erf(a / sqrt(2.0)));
@@ -146,7 +146,7 @@ int main(void)
         bool inside = true;
         const uint32_t n = 1u << 16;
         for (uint32_t i = 0; i < n; i++) {
-            il_vec2 g = il_pt_filter_offset(IL_FILTER_GAUSSIAN, il_sobol02(i));
+            il_vec2 g = il_filter_offset(IL_FILTER_GAUSSIAN, il_sobol02(i));
             double dx = g.x - 0.5, dy = g.y - 0.5;
             inside &= fabs(dx) <= 1.5 && fabs(dy) <= 1.5;
             m += dx + dy;

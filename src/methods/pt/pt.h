@@ -32,14 +32,4 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
 il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampler *sampler,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays);
 
-/* The film offset of a sample within (box) or around (Gaussian) its pixel,
- * relative to the pixel's top-left corner, from u in [0,1)^2 by filter
- * importance sampling (pbrt-v4 8.8): box: uniform in [0,1)^2; Gaussian:
- * sigma 0.5 px truncated at radius 1.5 px around the pixel centre, so the
- * sample weight is 1. */
-il_vec2 il_pt_filter_offset(il_filter_type filter, il_vec2 u);
-
-/* Inverse error function (for the Gaussian filter); |x| < 1. */
-float il_erfinv(float x);
-
 #endif

@@ -26,17 +26,6 @@ static float mis_weight(il_pt_strategy strategy, il_pt_strategy own, float own_p
     return strategy == own ? 1.0f : 0.0f;
 }
 
-/* Shading normals make the two hemispheres of ng and ns disagree near the
- * silhouette.  A direction pair that is a reflection for one normal and a
- * transmission for the other would leak light through the surface (Veach
- * 1997, 5.3.2): such samples are dropped. */
-static bool sides_agree(const il_surface *s, il_vec3 wo, il_vec3 wi)
-{
-    float g = v3_dot(wo, s->ng) * v3_dot(wi, s->ng);
-    float n = v3_dot(wo, s->ns) * v3_dot(wi, s->ns);
-    return (g > 0.0f) == (n > 0.0f) && g != 0.0f;
-}
-
 static inline il_vec3 add_scaled(il_vec3 acc, il_vec3 beta, il_vec3 value, float w)
 {
     return v3_add(acc, v3_scale(v3_mul(beta, value), w));
@@ -104,7 +93,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
         /* Next-event estimation: a light sample and a shadow ray. */
         il_light_sample ls;
         if (!il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
-            sides_agree(&surf, wo, ls.wi)) {
+            il_sides_agree(&surf, wo, ls.wi)) {
             float w = 1.0f, bsdf_pdf = 0.0f;
             il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
             if (!ls.delta)
@@ -126,7 +115,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
 
         /* BSDF sampling continues the path. */
         il_bsdf_sample bs;
-        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !sides_agree(&surf, wo, bs.wi))
+        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !il_sides_agree(&surf, wo, bs.wi))
             break;
         beta = v3_mul(beta, bs.weight);
         if (v3_is_zero(beta) || !v3_is_finite(beta))

@@ -16,38 +16,23 @@
  *   spot and directional lights are invisible to camera rays (as in pt);
  *   their light is in the patches.
  *
- * The film loop is the path tracer's (pt.c): passes over 16x16 tiles, every
- * sample keyed by (seed, pixel, sample index), so the film is bit-identical
- * whatever the thread count. */
-#include <omp.h>
+ * The film loop is the shared camera pass (methods/camera_pass.c), so the
+ * film is bit-identical whatever the thread count. */
 #include <string.h>
 
 #include "core/error.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
-#include "methods/pt/pt.h"
+#include "methods/camera_pass.h"
 #include "methods/radiosity/rad.h"
 #include "scene/bsdf.h"
-#include "scene/camera.h"
 #include "scene/lights.h"
-
-#define IL_RR_TILE 16
-/* Samples per pass: as in pt.c, small images get several samples per pixel
- * per pass so the per-pass cost stays negligible. */
-#define IL_RR_PASS_SAMPLES 65536u
-#define IL_RR_PASS_MAX_SPP 64u
 
 typedef struct rr_job {
     const il_scene *scene;
     const il_rad_mesh *mesh;
     const il_vec3 *vrad;        /* per mesh vertex */
-    il_film *film;
-    il_camera cam;
-    uint32_t width, height, tiles_x;
     uint32_t max_depth;
-    uint64_t seed;
-    il_sampler_type sampler;
-    il_filter_type filter;
 } rr_job;
 
 /* Barycentrics (b1, b2) of point p in triangle (a, b, c), p in its plane
@@ -94,9 +79,10 @@ static bool sample_glossy(const il_bsdf *b, il_vec3 wo, il_vec2 u, il_vec3 *wi, 
 }
 
 /* The radiance arriving at org from direction -dir (dir unit) along one path. */
-static il_vec3 rr_radiance(const rr_job *job, il_vec3 org, il_vec3 dir, il_sampler *smp,
-                           uint64_t *rays)
+static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, il_sampler *smp,
+                                  uint64_t *rays)
 {
+    const rr_job *job = method;
     const il_scene *s = job->scene;
     const il_rad_mesh *mesh = job->mesh;
     const il_tracer *tr = mesh->tracer;
@@ -169,11 +155,7 @@ static il_vec3 rr_radiance(const rr_job *job, il_vec3 org, il_vec3 dir, il_sampl
             il_bsdf_sample bs;
             if (!il_bsdf_is_delta(&b) || !il_bsdf_sample_dir(&b, wo, u_choice.y, u, &bs))
                 break;
-            /* Shading normals must not turn a reflection into a
-             * transmission (Veach 1997, 5.3.2), as in pt_path.c. */
-            float g = v3_dot(wo, surf.ng) * v3_dot(bs.wi, surf.ng);
-            float n = v3_dot(wo, surf.ns) * v3_dot(bs.wi, surf.ns);
-            if ((g > 0.0f) != (n > 0.0f) || g == 0.0f)
+            if (!il_sides_agree(&surf, wo, bs.wi))
                 break;
             wi = bs.wi;
             weight = bs.weight;
@@ -186,30 +168,6 @@ static il_vec3 rr_radiance(const rr_job *job, il_vec3 org, il_vec3 dir, il_sampl
     }
     *rays += nrays;
     return L;
-}
-
-static void render_tile(const rr_job *job, uint32_t tile, uint32_t first, uint32_t count,
-                        uint64_t *rays, uint64_t *bad)
-{
-    uint32_t x0 = (tile % job->tiles_x) * IL_RR_TILE, y0 = (tile / job->tiles_x) * IL_RR_TILE;
-    uint32_t x1 = x0 + IL_RR_TILE < job->width ? x0 + IL_RR_TILE : job->width;
-    uint32_t y1 = y0 + IL_RR_TILE < job->height ? y0 + IL_RR_TILE : job->height;
-    for (uint32_t y = y0; y < y1; y++)
-        for (uint32_t x = x0; x < x1; x++) {
-            uint64_t pixel = (uint64_t)y * job->width + x;
-            for (uint32_t i = first; i < first + count; i++) {
-                il_sampler smp;
-                il_sampler_start(&smp, job->sampler, job->seed, pixel, i);
-                il_vec2 off = il_pt_filter_offset(job->filter, il_sampler_2d(&smp));
-                il_vec3 dir = il_camera_ray_dir(&job->cam, (float)x + off.x, (float)y + off.y);
-                il_vec3 L = rr_radiance(job, job->cam.position, dir, &smp, rays);
-                if (!v3_is_finite(L)) {
-                    (*bad)++;
-                    continue;
-                }
-                il_film_add_sample(job->film, x, y, L, 1.0f);
-            }
-        }
 }
 
 /* stats: spp is set, rays and nonfinite_samples are added to (the solve may
@@ -227,65 +185,15 @@ il_status il_rad_render_film(const il_scene *scene, const il_rad_mesh *mesh,
     if (!mesh->tracer)
         return il_fail(err, IL_ERR_INVALID, "radiosity render: the mesh has no ray-casting structure");
 
-    rr_job job;
-    memset(&job, 0, sizeof job);
-    job.scene = scene;
-    job.mesh = mesh;
-    job.vrad = vertex_radiance;
-    job.film = film;
-    job.width = il_film_width(film);
-    job.height = il_film_height(film);
-    job.tiles_x = (job.width + IL_RR_TILE - 1) / IL_RR_TILE;
-    job.max_depth = desc->max_depth ? desc->max_depth : 8;
-    job.seed = desc->seed;
-    job.sampler = desc->sampler;
-    job.filter = desc->filter;
-    il_camera_init(&job.cam, &scene->camera.desc, job.width, job.height);
-
-    bool timed = desc->time_limit > 0.0;
-    uint32_t spp = desc->spp ? desc->spp : (timed ? UINT32_MAX : 16u);
-    int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
-    uint64_t pixels = (uint64_t)job.width * job.height;
-    uint32_t tiles = job.tiles_x * ((job.height + IL_RR_TILE - 1) / IL_RR_TILE);
-    uint32_t per_pass = pixels ? (uint32_t)(IL_RR_PASS_SAMPLES / pixels) : 1u;
-    per_pass = per_pass < 1 ? 1 : (per_pass > IL_RR_PASS_MAX_SPP ? IL_RR_PASS_MAX_SPP : per_pass);
-
-    il_film_clear(film);
-    double t0 = omp_get_wtime(), seconds = 0.0;
-    uint64_t rays = 0, bad = 0;
-    uint32_t done = 0;
-    while (done < spp) {
-        uint32_t count = spp - done < per_pass ? spp - done : per_pass;
-        uint64_t pass_rays = 0, pass_bad = 0;
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : pass_rays, pass_bad)
-        for (uint32_t t = 0; t < tiles; t++)
-            render_tile(&job, t, done, count, &pass_rays, &pass_bad);
-        done += count;
-        rays += pass_rays;
-        bad += pass_bad;
-        seconds = omp_get_wtime() - t0;
-        if (desc->progress) {
-            il_render_progress p = {
-                .passes_done = done,
-                .passes_total = spp == UINT32_MAX ? 0 : spp,
-                .seconds = seconds,
-                .time_limit = desc->time_limit,
-                .rays = rays,
-                .film = film,
-            };
-            /* Stopping early is not an error: the film holds `done`
-             * complete samples per pixel and stats.spp says so. */
-            if (!desc->progress(&p, desc->progress_user))
-                break;
-        }
-        if (timed && seconds >= desc->time_limit)
-            break;
-    }
+    rr_job job = {.scene = scene, .mesh = mesh, .vrad = vertex_radiance,
+                  .max_depth = desc->max_depth ? desc->max_depth : 8};
+    il_camera_pass_result r;
+    il_camera_pass(scene, film, desc, rr_camera_radiance, &job, &r);
     if (stats) {
-        stats->spp = done;
-        stats->rays += rays;
-        stats->nonfinite_samples += bad;
-        stats->radiosity.seconds_render = seconds;
+        stats->spp = r.spp;
+        stats->rays += r.rays;
+        stats->nonfinite_samples += r.nonfinite_samples;
+        stats->radiosity.seconds_render = r.seconds;
     }
     return IL_OK;
 }

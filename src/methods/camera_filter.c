@@ -1,6 +1,8 @@
 /* Pixel jitter by filter importance sampling (pbrt-v4 8.8): samples are
  * placed with density proportional to the filter, so each carries weight 1. */
-#include "methods/pt/pt.h"
+#include <math.h>
+
+#include "methods/camera_pass.h"
 
 /* Inverse error function: the single-precision approximation of Giles 2012
  * ("Approximating the erfinv function", GPU Computing Gems Jade, ch. 10),
@@ -53,7 +55,7 @@ static float truncated_gaussian(float u)
     return il_clampf(x, -IL_GAUSS_RADIUS, IL_GAUSS_RADIUS);
 }
 
-il_vec2 il_pt_filter_offset(il_filter_type filter, il_vec2 u)
+il_vec2 il_filter_offset(il_filter_type filter, il_vec2 u)
 {
     if (filter == IL_FILTER_GAUSSIAN)
         return v2(0.5f + truncated_gaussian(u.x), 0.5f + truncated_gaussian(u.y));
