@@ -19,6 +19,7 @@ struct il_ff_work {
     const il_ff *ff;
     il_hemicube_buffers *hemicube;
     float *scratch;             /* ray-cast tallies, num_patches, kept zeroed */
+    il_vec2 *ray_order;         /* ray-cast samples in tracing order, 2 * ray_samples */
     il_ff_row row;              /* index/value with room for num_patches */
 };
 
@@ -114,7 +115,9 @@ il_status il_ff_work_create(const il_ff *ff, il_ff_work **out, il_error *err)
         }
     } else {
         w->scratch = il_calloc(n, sizeof *w->scratch, err);
-        if (!w->scratch) {
+        w->ray_order = w->scratch ? il_malloc(2 * (size_t)ff->settings.ray_samples * sizeof *w->ray_order, err)
+                                  : NULL;
+        if (!w->ray_order) {
             il_ff_work_release(w);
             return IL_ERR_MEMORY;
         }
@@ -129,6 +132,7 @@ void il_ff_work_release(il_ff_work *work)
         return;
     il_hemicube_buffers_release(work->hemicube);
     free(work->scratch);
+    free(work->ray_order);
     free(work->row.index);
     free(work->row.value);
     free(work);
@@ -142,7 +146,7 @@ const il_ff_row *il_ff_compute_row(const il_ff *ff, il_ff_work *work, uint32_t i
     if (ff->hemicube)
         il_hemicube_row(ff->hemicube, work->hemicube, i, &work->row);
     else
-        il_ff_ray_row(ff->mesh, ff->settings.ray_samples, ff->settings.seed, i, work->scratch,
-                      &work->row);
+        il_ff_ray_row_ordered(ff->mesh, ff->settings.ray_samples, ff->settings.seed, i,
+                              work->scratch, work->ray_order, &work->row);
     return &work->row;
 }
