@@ -2,7 +2,7 @@
  *
  *   bench_radiosity SCENE [--subdiv L | --patch-size M] [--form-factors hemicube|raycast]
  *                   [--hemicube-res N] [--ff-samples N] [--solver shooting|jacobi|gauss-seidel]
- *                   [--tolerance X] [--threads T] [--width W] [--height H] [--spp N]
+ *                   [--tolerance X] [--ff-cache-mb N] [--threads T] [--width W] [--height H] [--spp N]
  *
  * Solves one configuration (default: converged to 0.01, hemicube 256) and
  * renders it (default 256x256, 4 spp), then prints one line: patches, steps,
@@ -21,7 +21,7 @@ static void usage(void)
 {
     fprintf(stderr, "usage: bench_radiosity SCENE [--subdiv L | --patch-size M] "
                     "[--form-factors hemicube|raycast] [--hemicube-res N] [--ff-samples N] "
-                    "[--solver shooting|jacobi|gauss-seidel] [--tolerance X] [--threads T] "
+                    "[--solver shooting|jacobi|gauss-seidel] [--tolerance X] [--ff-cache-mb N] [--threads T] "
                     "[--width W] [--height H] [--spp N]\n");
 }
 
@@ -58,6 +58,8 @@ int main(int argc, char **argv)
                                                       : IL_SOLVER_SHOOTING;
         else if (!strcmp(a, "--tolerance"))
             rad.tolerance = (float)atof(v);
+        else if (!strcmp(a, "--ff-cache-mb"))
+            rad.ff_cache_mb = (uint32_t)atoi(v);
         else if (!strcmp(a, "--threads"))
             rd.threads = atoi(v);
         else if (!strcmp(a, "--width"))

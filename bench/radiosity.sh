@@ -8,6 +8,6 @@ for ff in hemicube raycast; do
   for t in 1 2; do
     $B simple-room --subdiv 5 --form-factors $ff --threads $t | tail -1
     $B simple-room --subdiv 6 --form-factors $ff --threads $t | tail -1
-    $B box-room --patch-size 0.1 --form-factors $ff --threads $t | tail -1
+    $B box-room --patch-size 0.095 --form-factors $ff --threads $t | tail -1
   done
 done
