@@ -3,7 +3,7 @@
  * grouped back by the scene mesh they came from (tri_src_mesh), one
  * il_bake_mesh per scene mesh, with their own compact vertex arrays.
  *
- * Per vertex: the radiance interpolated from the patches (rad_vertex.c), zero
+ * Per vertex: the radiance interpolated from the patches (patch_vertex.c), zero
  * on mirror/glass triangles (they have no patch); the normal is the
  * area-weighted mean of the normals of its triangles: the patch normal, or
  * for a triangle without a patch the scene triangle's geometric normal. */
@@ -61,7 +61,7 @@ typedef struct bake_scratch {
     bool *lit;            /* per local vertex: touched by a patch triangle */
 } bake_scratch;
 
-static il_status fill_mesh(const il_scene *scene, const il_rad_mesh *rm, const il_vec3 *vr,
+static il_status fill_mesh(const il_scene *scene, const il_patch_mesh *rm, const il_vec3 *vr,
                            uint32_t m, bake_scratch *s, il_bake_mesh *out, il_error *err)
 {
     const il_mesh *sm = &scene->meshes[m];
@@ -99,7 +99,7 @@ static il_status fill_mesh(const il_scene *scene, const il_rad_mesh *rm, const i
         uint32_t patch = rm->tri_patch[t];
         il_vec3 a = rm->positions[tri[0]], b = rm->positions[tri[1]], c = rm->positions[tri[2]];
         float area = 0.5f * v3_length(v3_cross(v3_sub(b, a), v3_sub(c, a)));
-        il_vec3 n = patch != IL_RAD_NO_PATCH
+        il_vec3 n = patch != IL_NO_PATCH
                         ? rm->patches[patch].normal
                         : scene_triangle_normal(scene, rm->tri_src_mesh[t], rm->tri_src_prim[t]);
         for (int q = 0; q < 3; q++) {
@@ -108,7 +108,7 @@ static il_status fill_mesh(const il_scene *scene, const il_rad_mesh *rm, const i
             out->normals[3 * (size_t)l + 0] += n.x * area;
             out->normals[3 * (size_t)l + 1] += n.y * area;
             out->normals[3 * (size_t)l + 2] += n.z * area;
-            if (patch != IL_RAD_NO_PATCH)
+            if (patch != IL_NO_PATCH)
                 s->lit[l] = true;
         }
     }
@@ -134,7 +134,7 @@ static il_status fill_mesh(const il_scene *scene, const il_rad_mesh *rm, const i
     return IL_OK;
 }
 
-static il_status convert(const il_scene *scene, const il_rad_mesh *rm, const il_vec3 *vr,
+static il_status convert(const il_scene *scene, const il_patch_mesh *rm, const il_vec3 *vr,
                          il_bake_result *res, il_error *err)
 {
     uint32_t nm = scene->num_meshes;
@@ -215,13 +215,13 @@ il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_res
     il_bake_result *res = il_calloc(1, sizeof *res, err);
     if (!res)
         return IL_ERR_MEMORY;
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     il_vec3 *vr = NULL;
     il_status st = il_rad_run(scene, desc, &mesh, NULL, &vr, &res->stats, err);
     if (st == IL_OK)
         st = convert(scene, mesh, vr, res, err);
     if (mesh)
-        il_rad_mesh_release(mesh);
+        il_patch_mesh_release(mesh);
     free(vr);
     if (st != IL_OK) {
         il_bake_release(res);

@@ -54,7 +54,7 @@ static double ff_perpendicular(double w, double h, double l)
 /* Quads o + u*eu + v*ev, split into nu x nv patches (front: eu x ev), or
  * into plain occluder triangles (patch = false: mirror-like, no patches). */
 typedef struct builder {
-    il_rad_mesh m;
+    il_patch_mesh m;
     uint32_t cap_v, cap_p, cap_t;
 } builder;
 
@@ -111,13 +111,13 @@ static void add_grid(builder *b, il_vec3 o, il_vec3 eu, il_vec3 ev, int nu, int 
             uint32_t v[4];
             for (int k = 0; k < 4; k++)
                 v[k] = add_vertex(b, c[k]);
-            uint32_t id = IL_RAD_NO_PATCH;
+            uint32_t id = IL_NO_PATCH;
             if (patch) {
                 uint32_t cap = b->cap_p;
-                grow((void **)&b->m.patches, &cap, b->m.num_patches + 1, sizeof(il_rad_patch));
+                grow((void **)&b->m.patches, &cap, b->m.num_patches + 1, sizeof(il_patch));
                 b->cap_p = cap;
                 id = b->m.num_patches++;
-                il_rad_patch *p = &b->m.patches[id];
+                il_patch *p = &b->m.patches[id];
                 memset(p, 0, sizeof *p);
                 p->num_corners = 4;
                 memcpy(p->v, v, sizeof v);
@@ -132,10 +132,10 @@ static void add_grid(builder *b, il_vec3 o, il_vec3 eu, il_vec3 ev, int nu, int 
     }
 }
 
-static il_rad_mesh *finish(builder *b)
+static il_patch_mesh *finish(builder *b)
 {
     il_error err;
-    il_rad_mesh *m = calloc(1, sizeof *m);
+    il_patch_mesh *m = calloc(1, sizeof *m);
     *m = b->m;
     CHECK_OK(il_tracer_create_triangles(m->positions, m->num_vertices, m->tri_indices, m->num_tris,
                                         &m->tracer, &err), &err);
@@ -143,7 +143,7 @@ static il_rad_mesh *finish(builder *b)
     return m;
 }
 
-static void free_mesh(il_rad_mesh *m)
+static void free_mesh(il_patch_mesh *m)
 {
     il_tracer_release(m->tracer);
     free(m->positions);
@@ -155,7 +155,7 @@ static void free_mesh(il_rad_mesh *m)
 
 /* Two unit squares: the shooter at z = 0 facing +z split ns x ns, the
  * receiver at z = 1 facing down (or up when flipped) split nr x nr. */
-static il_rad_mesh *parallel_pair(int ns, int nr, bool flip, bool occluder)
+static il_patch_mesh *parallel_pair(int ns, int nr, bool flip, bool occluder)
 {
     builder b = {0};
     add_grid(&b, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), ns, ns, true);
@@ -174,7 +174,7 @@ static il_rad_mesh *parallel_pair(int ns, int nr, bool flip, bool occluder)
  * facing down: every segment from the shooter to the receiver crosses the
  * middle panel, so the shooter sees nothing and the receiver sees the
  * panel's front only. */
-static il_rad_mesh *back_panel(int ns)
+static il_patch_mesh *back_panel(int ns)
 {
     builder b = {0};
     add_grid(&b, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), ns, ns, true);
@@ -185,7 +185,7 @@ static il_rad_mesh *back_panel(int ns)
 
 /* The floor square z = 0 (y in [0,1], facing +z) and the wall y = 0
  * (z in [0,1], facing +y): perpendicular with the common edge along x. */
-static il_rad_mesh *perpendicular_pair(int ns, int nr)
+static il_patch_mesh *perpendicular_pair(int ns, int nr)
 {
     builder b = {0};
     add_grid(&b, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), ns, ns, true);
@@ -194,7 +194,7 @@ static il_rad_mesh *perpendicular_pair(int ns, int nr)
 }
 
 /* A closed lx x ly x lz box, faces facing inwards, n x n patches per face. */
-static il_rad_mesh *closed_box(float lx, float ly, float lz, int n)
+static il_patch_mesh *closed_box(float lx, float ly, float lz, int n)
 {
     builder b = {0};
     add_grid(&b, v3(0, 0, 0), v3(0, 0, lz), v3(lx, 0, 0), n, n, true);
@@ -305,7 +305,7 @@ static void test_ray_closed_forms(void)
 {
     float *scratch = calloc(8, sizeof(float));
     il_ff_row row = new_row(8);
-    il_rad_mesh *m = parallel_pair(1, 1, false, false);
+    il_patch_mesh *m = parallel_pair(1, 1, false, false);
     il_ff_ray_row(m, 1u << 20, 7, 0, scratch, &row);
     CHECK(row.count == 1 && row.index[0] == 1);
     CHECK_REL(row.value[0], 0.19982, 0.01);
@@ -354,7 +354,7 @@ static void test_ray_closed_forms(void)
     free(scratch);
 }
 
-static void hemicube_row_of(il_rad_mesh *m, uint32_t res, uint32_t i, il_ff_row *row)
+static void hemicube_row_of(il_patch_mesh *m, uint32_t res, uint32_t i, il_ff_row *row)
 {
     il_error err;
     il_hemicube *hc = NULL;
@@ -374,7 +374,7 @@ static void test_hemicube_closed_forms(void)
     il_vec3 o = v3(0.5f, 0.5f, 0), up = v3(0, 0, 1);
 
     /* Point-to-area: one shooter patch, the receiver split NR x NR. */
-    il_rad_mesh *m = parallel_pair(1, NR, false, false);
+    il_patch_mesh *m = parallel_pair(1, NR, false, false);
     hemicube_row_of(m, 256, 0, &row);
     CHECK(row_well_formed(&row, 0, m->num_patches));
     CHECK(row.count == NR * NR);
@@ -449,7 +449,7 @@ static void test_hemicube_closed_forms(void)
 static void test_closed_box(il_form_factor_method method, double recip_tol)
 {
     il_error err;
-    il_rad_mesh *m = closed_box(1.0f, 0.75f, 1.25f, 4);
+    il_patch_mesh *m = closed_box(1.0f, 0.75f, 1.25f, 4);
     uint32_t n = m->num_patches;
     il_rad_settings s;
     memset(&s, 0, sizeof s);
@@ -490,7 +490,7 @@ static void test_closed_box(il_form_factor_method method, double recip_tol)
     double diff = 0.0, total = 0.0, worst = 0.0, worst_point = 0.0;
     for (uint32_t i = 0; i < n; i++) {
         for (uint32_t j = i + 1; j < n; j++) {
-            const il_rad_patch *pi = &m->patches[i], *pj = &m->patches[j];
+            const il_patch *pi = &m->patches[i], *pj = &m->patches[j];
             double fij = F[(size_t)i * n + j], fji = F[(size_t)j * n + i];
             double a = pi->area * fij, b = pj->area * fji;
             if (method == IL_FF_RAYCAST) {
@@ -603,7 +603,7 @@ static void test_cache(void)
     il_ff_cache_release(c);
 }
 
-/* Through the public scene API and il_rad_mesh_build: a closed 2 x 2 x 2 box
+/* Through the public scene API and il_patch_mesh_build: a closed 2 x 2 x 2 box
  * (walls facing in) with a mirror panel inside, which gets no patches but
  * occludes in both back-ends.  Without the panel every row sums to 1; with
  * it the rows lose what the panel hides, and the two back-ends agree. */
@@ -654,8 +654,8 @@ static void test_scene_box(void)
         s.ray_samples = 1u << 14;
         s.seed = 11;
         s.threads = 1;
-        il_rad_mesh *m = NULL;
-        CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+        il_patch_mesh *m = NULL;
+        CHECK_OK(il_patch_mesh_build(scene, &(il_patch_sizing){s.patch_size, s.subdivisions}, &m, &err), &err);
         if (!m) {
             il_scene_release(scene);
             continue;
@@ -695,7 +695,7 @@ static void test_scene_box(void)
                mirror ? " + mirror" : "", n, worst_one, worst_agree);
         free(sums[0]);
         free(sums[1]);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
         il_scene_release(scene);
     }
 }

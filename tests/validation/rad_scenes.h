@@ -47,7 +47,7 @@ static inline il_scene *coloured_room(void)
  * that il_radiosity_desc cannot express (a cache cap in bytes). */
 typedef struct rad_case {
     il_rad_settings set;
-    il_rad_mesh *mesh;
+    il_patch_mesh *mesh;
     il_rad_solution sol;
     il_radiosity_stats stats;
 } rad_case;
@@ -62,7 +62,7 @@ static inline il_status rad_case_run(const il_scene *s, const il_render_desc *rd
         return st;
     if (cache_bytes)
         c->set.ff_cache_bytes = cache_bytes;
-    st = il_rad_mesh_build(s, &c->set, &c->mesh, &g_err);
+    st = il_patch_mesh_build(s, &(il_patch_sizing){c->set.patch_size, c->set.subdivisions}, &c->mesh, &g_err);
     if (st != IL_OK)
         return st;
     st = il_rad_solution_init(&c->sol, c->mesh->num_patches, &g_err);
@@ -89,12 +89,12 @@ static inline void rad_case_free(rad_case *c)
 {
     il_rad_solution_free(&c->sol);
     if (c->mesh)
-        il_rad_mesh_release(c->mesh);
+        il_patch_mesh_release(c->mesh);
     memset(c, 0, sizeof *c);
 }
 
 /* sum_i A_i lum(|a_i - b_i|) / sum_i A_i lum(b_i). */
-static inline double rad_power_diff(const il_rad_mesh *m, const il_vec3 *a, const il_vec3 *b)
+static inline double rad_power_diff(const il_patch_mesh *m, const il_vec3 *a, const il_vec3 *b)
 {
     double num = 0.0, den = 0.0;
     for (uint32_t i = 0; i < m->num_patches; i++) {
@@ -107,7 +107,7 @@ static inline double rad_power_diff(const il_rad_mesh *m, const il_vec3 *a, cons
 }
 
 /* The largest per-patch, per-channel relative difference (to max(|b|, floor)). */
-static inline double rad_max_rel_diff(const il_rad_mesh *m, const il_vec3 *a, const il_vec3 *b,
+static inline double rad_max_rel_diff(const il_patch_mesh *m, const il_vec3 *a, const il_vec3 *b,
                                       double floor)
 {
     double worst = 0.0;

@@ -34,7 +34,7 @@ static double floor_irradiance(double x0, double x1, double z0, double z1, il_ve
     return sum / ((double)n * n);
 }
 
-static void patch_bounds(const il_rad_mesh *m, const il_rad_patch *p, double *x0, double *x1,
+static void patch_bounds(const il_patch_mesh *m, const il_patch *p, double *x0, double *x1,
                          double *z0, double *z1)
 {
     *x0 = *z0 = 1e30;
@@ -68,7 +68,7 @@ static void test_point_and_spot(bool spot)
     rad_case c;
     memset(&c, 0, sizeof c);
     CHECK_OK(il_rad_settings_resolve(s, &rd, &c.set, &g_err), &g_err);
-    CHECK_OK(il_rad_mesh_build(s, &c.set, &c.mesh, &g_err), &g_err);
+    CHECK_OK(il_patch_mesh_build(s, &(il_patch_sizing){c.set.patch_size, c.set.subdivisions}, &c.mesh, &g_err), &g_err);
     if (!c.mesh) {
         il_scene_release(s);
         return;
@@ -80,7 +80,7 @@ static void test_point_and_spot(bool spot)
     uint32_t floor_patches = 0, below = 0, lit = 0;
     double worst = 0.0;
     for (uint32_t i = 0; i < c.mesh->num_patches; i++) {
-        const il_rad_patch *p = &c.mesh->patches[i];
+        const il_patch *p = &c.mesh->patches[i];
         double e = PI_D * c.sol.direct[i].x / rho;
         CHECK(c.sol.direct[i].x == c.sol.direct[i].y && c.sol.direct[i].y == c.sol.direct[i].z);
         if (p->normal.y < 0.99f) {
@@ -153,7 +153,7 @@ static void test_directional_and_sky(void)
     rad_case c;
     memset(&c, 0, sizeof c);
     CHECK_OK(il_rad_settings_resolve(s, &rd, &c.set, &g_err), &g_err);
-    CHECK_OK(il_rad_mesh_build(s, &c.set, &c.mesh, &g_err), &g_err);
+    CHECK_OK(il_patch_mesh_build(s, &(il_patch_sizing){c.set.patch_size, c.set.subdivisions}, &c.mesh, &g_err), &g_err);
     if (c.mesh) {
         CHECK_OK(il_rad_solution_init(&c.sol, c.mesh->num_patches, &g_err), &g_err);
         CHECK_OK(il_rad_direct(s, c.mesh, &c.set, &c.sol, &g_err), &g_err);
@@ -183,13 +183,13 @@ static void test_shadow(void)
     rad_case c;
     memset(&c, 0, sizeof c);
     CHECK_OK(il_rad_settings_resolve(s, &rd, &c.set, &g_err), &g_err);
-    CHECK_OK(il_rad_mesh_build(s, &c.set, &c.mesh, &g_err), &g_err);
+    CHECK_OK(il_patch_mesh_build(s, &(il_patch_sizing){c.set.patch_size, c.set.subdivisions}, &c.mesh, &g_err), &g_err);
     if (c.mesh) {
         CHECK_OK(il_rad_solution_init(&c.sol, c.mesh->num_patches, &g_err), &g_err);
         CHECK_OK(il_rad_direct(s, c.mesh, &c.set, &c.sol, &g_err), &g_err);
         uint32_t dark = 0, bright = 0, lit = 0;
         for (uint32_t i = 0; i < c.mesh->num_patches; i++) {
-            const il_rad_patch *p = &c.mesh->patches[i];
+            const il_patch *p = &c.mesh->patches[i];
             if (p->center.y > 0.1f) {
                 bright += c.sol.direct[i].x > 0.0f; /* the occluder's top */
                 continue;

@@ -30,7 +30,7 @@ static void test_run_stats(const il_scene *s)
 {
     il_radiosity_desc rad = run_options();
     il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .threads = 2, .radiosity = &rad};
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     il_rad_solution sol;
     il_vec3 *vr = NULL;
     il_render_stats st;
@@ -51,7 +51,7 @@ static void test_run_stats(const il_scene *s)
         CHECK(v3_is_finite(vr[v]) && vr[v].x >= 0.0f);
     uint32_t coarse = mesh->num_patches;
     il_rad_solution_free(&sol);
-    il_rad_mesh_release(mesh);
+    il_patch_mesh_release(mesh);
     free(vr);
 
     /* Adaptive subdivision: more patches (the lamp's shadow and the corners
@@ -69,14 +69,14 @@ static void test_bake(const il_scene *s)
     il_radiosity_desc rad = run_options();
     il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .threads = 2, .radiosity = &rad};
     /* The reference: the same run (deterministic) through the internal API. */
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     il_vec3 *vr = NULL;
     CHECK_OK(il_rad_run(s, &rd, &mesh, NULL, &vr, NULL, &g_err), &g_err);
     il_bake_result *bake = NULL;
     CHECK_OK(il_bake(s, &rd, &bake, &g_err), &g_err);
     if (!mesh || !bake) {
         if (mesh)
-            il_rad_mesh_release(mesh);
+            il_patch_mesh_release(mesh);
         free(vr);
         il_bake_release(bake);
         return;
@@ -123,7 +123,7 @@ static void test_bake(const il_scene *s)
     }
     CHECK(tris == mesh->num_tris);
     il_bake_release(bake);
-    il_rad_mesh_release(mesh);
+    il_patch_mesh_release(mesh);
     free(vr);
 }
 

@@ -95,7 +95,7 @@ static void test_solvers_agree(void)
         CHECK_OK(rad_case_run(s, &rd, 0, &c[k]), &g_err);
     }
     if (c[0].mesh && c[1].mesh && c[2].mesh) {
-        const il_rad_mesh *m = c[0].mesh;
+        const il_patch_mesh *m = c[0].mesh;
         CHECK(m->num_patches >= 100 && m->num_patches <= 400);
         /* Indirect light matters here: the walls are well above direct. */
         double p_direct = 0.0, p_total = 0.0;
@@ -131,7 +131,7 @@ static void test_solvers_agree(void)
         /* The red wall bleeds red onto the floor next to it. */
         double fr_red = 0, fr_green = 0;
         for (uint32_t i = 0; i < m->num_patches; i++) {
-            const il_rad_patch *p = &m->patches[i];
+            const il_patch *p = &m->patches[i];
             if (p->normal.y > 0.9f && p->center.y < 0.01f) {
                 il_vec3 L = c[0].sol.radiance[i];
                 if (p->center.x < 0.25f)

@@ -8,17 +8,17 @@
 #include "methods/radiosity/rad.h"
 
 /* The big arrays of a mesh (its BVH not counted): for peak_bytes. */
-static size_t mesh_bytes(const il_rad_mesh *m)
+static size_t mesh_bytes(const il_patch_mesh *m)
 {
-    return (size_t)m->num_patches * sizeof(il_rad_patch) +
-           (size_t)m->num_surfaces * sizeof(il_rad_surface) +
+    return (size_t)m->num_patches * sizeof(il_patch) +
+           (size_t)m->num_surfaces * sizeof(il_patch_surface) +
            (size_t)m->num_vertices * (sizeof(il_vec3) + sizeof(uint32_t)) +
            (size_t)m->num_tris * (6 * sizeof(uint32_t));
 }
 
 /* Direct light, form factors, cache and solve on one mesh.  sol is
  * initialised here; on failure it is freed. */
-static il_status solve_mesh(const il_scene *scene, const il_rad_mesh *mesh,
+static il_status solve_mesh(const il_scene *scene, const il_patch_mesh *mesh,
                             const il_rad_settings *settings, il_rad_solution *sol,
                             il_radiosity_stats *stats, size_t *peak, il_error *err)
 {
@@ -57,7 +57,7 @@ static il_status solve_mesh(const il_scene *scene, const il_rad_mesh *mesh,
     return st;
 }
 
-il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_mesh **mesh_out,
+il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
                      il_rad_solution *sol_out, il_vec3 **vertex_radiance_out,
                      il_render_stats *stats, il_error *err)
 {
@@ -84,7 +84,7 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_m
     if (st != IL_OK)
         return st;
 
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     il_rad_solution sol;
     memset(&sol, 0, sizeof sol);
     il_vec3 *vr = NULL;
@@ -92,7 +92,8 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_m
     size_t peak = 0;
 
     double t0 = omp_get_wtime();
-    st = il_rad_mesh_build(scene, &settings, &mesh, err);
+    il_patch_sizing sizing = {settings.patch_size, settings.subdivisions};
+    st = il_patch_mesh_build(scene, &sizing, &mesh, err);
     rs->seconds_mesh += omp_get_wtime() - t0;
     if (st != IL_OK)
         goto fail;
@@ -109,13 +110,13 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_m
         }
         uint32_t marked = il_rad_mark_split(mesh, &sol, settings.adaptive_threshold, split);
         if (marked > 0) {
-            il_rad_mesh *fine = NULL;
+            il_patch_mesh *fine = NULL;
             t0 = omp_get_wtime();
-            st = il_rad_mesh_refine(scene, mesh, split, &fine, err);
+            st = il_patch_mesh_refine(scene, mesh, split, &fine, err);
             rs->seconds_mesh += omp_get_wtime() - t0;
             if (st != IL_OK)
                 goto fail;
-            il_rad_mesh_release(mesh);
+            il_patch_mesh_release(mesh);
             il_rad_solution_free(&sol);
             mesh = fine;
             st = solve_mesh(scene, mesh, &settings, &sol, rs, &peak, err);
@@ -131,7 +132,7 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_m
         st = IL_ERR_MEMORY;
         goto fail;
     }
-    il_rad_vertex_radiance(mesh, sol.radiance, vr);
+    il_patch_vertex_radiance(mesh, sol.radiance, vr);
     peak += (size_t)mesh->num_vertices * sizeof *vr;
 
     rs->num_patches = mesh->num_patches;
@@ -143,7 +144,7 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_m
     if (mesh_out)
         *mesh_out = mesh;
     else
-        il_rad_mesh_release(mesh);
+        il_patch_mesh_release(mesh);
     if (sol_out)
         *sol_out = sol;
     else
@@ -159,7 +160,7 @@ fail:
     free(vr);
     il_rad_solution_free(&sol);
     if (mesh)
-        il_rad_mesh_release(mesh);
+        il_patch_mesh_release(mesh);
     return st;
 }
 
@@ -170,7 +171,7 @@ il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_de
     if (!stats)
         stats = &local;
     double t0 = omp_get_wtime();
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     il_vec3 *vr = NULL;
     il_status st = il_rad_run(scene, desc, &mesh, NULL, &vr, stats, err);
     if (st != IL_OK)
@@ -179,13 +180,13 @@ il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_de
     il_render_stats pass;
     memset(&pass, 0, sizeof pass);
     double t1 = omp_get_wtime();
-    st = il_rad_render_film(scene, mesh, vr, film, desc, &pass, err);
+    st = il_patch_render_film(scene, mesh, vr, film, desc, &pass, err);
     stats->radiosity.seconds_render = omp_get_wtime() - t1;
     stats->spp = pass.spp;
     stats->rays = pass.rays;
     stats->nonfinite_samples = pass.nonfinite_samples;
     stats->seconds = omp_get_wtime() - t0;
-    il_rad_mesh_release(mesh);
+    il_patch_mesh_release(mesh);
     free(vr);
     return st;
 }

@@ -2,15 +2,17 @@
  * shared by the files of this folder and the tests.  See docs/radiosity.md.
  *
  * Pipeline (rad.c):
- *   scene -> il_rad_mesh_build (rad_mesh.c: surfaces, patches, its own BVH)
+ *   scene -> il_patch_mesh_build (methods/patch_mesh.c: surfaces, patches,
+ *            its own BVH; shared with the other diffuse methods)
  *         -> il_rad_direct (rad_direct.c: light from point/spot/directional
  *            lights and the sky, as initial unshot radiance)
  *         -> il_rad_solve (rad_solve_shoot.c / rad_solve_gather.c, rows from
  *            il_ff (rad_ff.c, rad_hemicube.c, rad_ff_ray.c) through the row
  *            cache (rad_ff_cache.c))
  *         -> optional adaptive split (rad_adaptive.c) and solve again
- *         -> il_rad_vertex_radiance (rad_vertex.c)
- *         -> il_rad_render_film (rad_render.c) or the bake (rad_bake.c).
+ *         -> il_patch_vertex_radiance (methods/patch_vertex.c)
+ *         -> il_patch_render_film (methods/patch_render.c) or the bake
+ *            (methods/bake.c).
  *
  * Quantities: the solver works in radiance, not radiosity: for a Lambertian
  * patch B = pi L, and the radiosity equation B_i = E_i + rho_i sum_j F_ij B_j
@@ -25,9 +27,10 @@
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
+#include "methods/patch_mesh.h"
 #include "trace/trace.h"
 
-#define IL_RAD_NO_PATCH UINT32_MAX
+#define IL_NO_PATCH UINT32_MAX
 
 /* ------------------------------------------------------------- settings */
 
@@ -53,57 +56,6 @@ typedef struct il_rad_settings {
 il_status il_rad_settings_resolve(const il_scene *scene, const il_render_desc *desc,
                                   il_rad_settings *out, il_error *err);
 
-/* --------------------------------------------------------------- meshing */
-
-/* A patch: a planar triangle or convex quad of one surface.  Vertices are in
- * counter-clockwise order seen from the front (the side `normal` points to). */
-typedef struct il_rad_patch {
-    uint32_t num_corners;      /* 3 or 4 */
-    uint32_t v[4];             /* indices into il_rad_mesh.positions */
-    il_vec3 center;            /* centroid */
-    il_vec3 normal;            /* unit */
-    float area;
-    uint32_t surface;          /* index into il_rad_mesh.surfaces */
-    il_vec3 rho;               /* diffuse reflectance (texture averaged over the patch) */
-    il_vec3 emission;          /* emitted radiance Le, front side */
-} il_rad_patch;
-
-/* A surface: connected triangles of one scene mesh and one material, split
- * at creases.  Vertices are shared only inside one surface, so light never
- * bleeds across a room's corner. */
-typedef struct il_rad_surface {
-    uint32_t mesh;             /* the scene mesh */
-    uint32_t material;
-    bool diffuse;              /* false: mirror/glass, kept unsplit, no patches */
-} il_rad_surface;
-
-/* The meshed scene.  Every patch becomes 1 or 2 triangles of `tri_*`; the
- * triangles of non-diffuse surfaces are copied unsplit (same vertex order as
- * in the scene, so barycentrics carry over).  `tracer` is built over these
- * triangles: a hit's prim indexes tri_*. */
-typedef struct il_rad_mesh {
-    il_rad_patch *patches;      uint32_t num_patches;
-    il_rad_surface *surfaces;   uint32_t num_surfaces;
-    il_vec3 *positions;         uint32_t num_vertices;  /* padded for Embree */
-    uint32_t *vertex_surface;   /* per vertex */
-    uint32_t *tri_indices;      uint32_t num_tris;      /* 3 per triangle */
-    uint32_t *tri_patch;        /* per triangle: patch or IL_RAD_NO_PATCH */
-    uint32_t *tri_src_mesh;     /* per triangle: the scene triangle it lies in */
-    uint32_t *tri_src_prim;
-    il_tracer *tracer;
-} il_rad_mesh;
-
-/* Meshes the committed scene by settings->subdivisions or patch_size.
- * An error (IL_ERR_INVALID) when it would exceed 4,000,000 patches or has no
- * diffuse surface. */
-il_status il_rad_mesh_build(const il_scene *scene, const il_rad_settings *settings,
-                            il_rad_mesh **out, il_error *err);
-/* A new mesh where every patch with split[i] is replaced by its 4 children
- * (midpoint split); other patches are kept.  Rebuilds the tracer. */
-il_status il_rad_mesh_refine(const il_scene *scene, const il_rad_mesh *mesh, const bool *split,
-                             il_rad_mesh **out, il_error *err);
-void il_rad_mesh_release(il_rad_mesh *mesh);
-
 /* ---------------------------------------------------------- form factors */
 
 /* A sparse row of the form-factor matrix: F_ij from patch i to the patches j
@@ -117,7 +69,7 @@ typedef struct il_ff_row {
 typedef struct il_ff il_ff;          /* shared and read-only once created */
 typedef struct il_ff_work il_ff_work; /* one per thread: buffers of one row */
 
-il_status il_ff_create(const il_rad_mesh *mesh, const il_rad_settings *settings, il_ff **out,
+il_status il_ff_create(const il_patch_mesh *mesh, const il_rad_settings *settings, il_ff **out,
                        il_error *err);
 void il_ff_release(il_ff *ff);
 il_status il_ff_work_create(const il_ff *ff, il_ff_work **out, il_error *err);
@@ -129,7 +81,7 @@ const il_ff_row *il_ff_compute_row(const il_ff *ff, il_ff_work *work, uint32_t i
 
 /* The two back-ends behind il_ff (the same contract, for tests). */
 typedef struct il_hemicube il_hemicube;
-il_status il_hemicube_create(const il_rad_mesh *mesh, uint32_t resolution, il_hemicube **out,
+il_status il_hemicube_create(const il_patch_mesh *mesh, uint32_t resolution, il_hemicube **out,
                              il_error *err);
 void il_hemicube_release(il_hemicube *hc);
 /* Per-thread buffers live inside il_ff_work; these are the stateless parts. */
@@ -141,7 +93,7 @@ void il_hemicube_row(const il_hemicube *hc, il_hemicube_buffers *b, uint32_t i, 
 
 /* Ray-cast row into caller-sized scratch (num_patches floats, zeroed on
  * entry and on return) and `out` (capacity num_patches). */
-void il_ff_ray_row(const il_rad_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
+void il_ff_ray_row(const il_patch_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
                    float *scratch, il_ff_row *out);
 
 /* Lambert's contour integral (Cohen & Wallace, "Radiosity and Realistic
@@ -183,19 +135,19 @@ void il_rad_solution_free(il_rad_solution *sol);
  * scene's point, spot and directional lights and its environment) / pi,
  * each averaged over several points of the patch with shadow rays through
  * the scene's tracer.  Deterministic in (seed, patch). */
-il_status il_rad_direct(const il_scene *scene, const il_rad_mesh *mesh,
+il_status il_rad_direct(const il_scene *scene, const il_patch_mesh *mesh,
                         const il_rad_settings *settings, il_rad_solution *sol, il_error *err);
 
 /* Solves from sol->direct (radiance = unshot = direct at the start) with
  * settings->solver until unshot/initial power < tolerance or max_steps.
  * Fills stats (seconds_form_factors, steps, rows_computed, cache_bytes...). */
-il_status il_rad_solve(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                        const il_rad_settings *settings, il_rad_solution *sol,
                        il_radiosity_stats *stats, il_error *err);
-il_status il_rad_solve_shooting(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                                 const il_rad_settings *settings, il_rad_solution *sol,
                                 il_radiosity_stats *stats, il_error *err);
-il_status il_rad_solve_gathering(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                                  const il_rad_settings *settings, il_rad_solution *sol,
                                  il_radiosity_stats *stats, il_error *err);
 
@@ -203,28 +155,15 @@ il_status il_rad_solve_gathering(const il_rad_mesh *mesh, const il_ff *ff, il_ff
  * differs from a neighbour's in the same surface (sharing a vertex) by more
  * than threshold * max(own, neighbour's, 1e-6 * brightest).  Returns how
  * many were marked. */
-uint32_t il_rad_mark_split(const il_rad_mesh *mesh, const il_rad_solution *sol, float threshold,
+uint32_t il_rad_mark_split(const il_patch_mesh *mesh, const il_rad_solution *sol, float threshold,
                            bool *split);
 
 /* ----------------------------------------------------------- output */
 
-/* Per-vertex radiance: the area-weighted mean of the patches around each
- * vertex (vertices belong to one surface only).  out has num_vertices. */
-void il_rad_vertex_radiance(const il_rad_mesh *mesh, const il_vec3 *patch_radiance,
-                            il_vec3 *out);
-
-/* Camera pass: rays hit the meshed scene; on diffuse surfaces the radiance
- * interpolated from the vertices is the answer; mirror and glass continue the
- * path by BSDF sampling as the path tracer does; Phong surfaces add their
- * glossy lobe by sampling it.  desc->spp samples per pixel (jittered). */
-il_status il_rad_render_film(const il_scene *scene, const il_rad_mesh *mesh,
-                             const il_vec3 *vertex_radiance, il_film *film,
-                             const il_render_desc *desc, il_render_stats *stats, il_error *err);
-
 /* The whole method: settings, mesh, direct light, solve (+ adaptive pass),
  * per-vertex radiance.  On success the caller owns *mesh_out and
  * *vertex_radiance_out (free()); stats->radiosity is filled. */
-il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_rad_mesh **mesh_out,
+il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
                      il_rad_solution *sol_out, il_vec3 **vertex_radiance_out,
                      il_render_stats *stats, il_error *err);
 

@@ -17,7 +17,7 @@ typedef struct vertex_patches {
     uint32_t *list;
 } vertex_patches;
 
-static bool build_adjacency(const il_rad_mesh *mesh, vertex_patches *adj)
+static bool build_adjacency(const il_patch_mesh *mesh, vertex_patches *adj)
 {
     uint32_t nv = mesh->num_vertices;
     adj->first = calloc((size_t)nv + 1, sizeof *adj->first);
@@ -46,7 +46,7 @@ static bool build_adjacency(const il_rad_mesh *mesh, vertex_patches *adj)
     return true;
 }
 
-uint32_t il_rad_mark_split(const il_rad_mesh *mesh, const il_rad_solution *sol, float threshold,
+uint32_t il_rad_mark_split(const il_patch_mesh *mesh, const il_rad_solution *sol, float threshold,
                            bool *split)
 {
     uint32_t np = mesh->num_patches;
@@ -67,7 +67,7 @@ uint32_t il_rad_mark_split(const il_rad_mesh *mesh, const il_rad_solution *sol, 
 
     uint32_t marked = 0;
     for (uint32_t i = 0; i < np; i++) {
-        const il_rad_patch *p = &mesh->patches[i];
+        const il_patch *p = &mesh->patches[i];
         float li = il_luminance(sol->radiance[i]);
         for (uint32_t c = 0; c < p->num_corners && !split[i]; c++) {
             uint32_t v = p->v[c];

@@ -36,7 +36,7 @@
  * weighted by the area element |dP/du x dP/dv| (constant for a
  * parallelogram); a triangle the area-preserving square-to-triangle map
  * (equal weights). */
-static void patch_points(const il_rad_mesh *mesh, const il_rad_patch *p,
+static void patch_points(const il_patch_mesh *mesh, const il_patch *p,
                          il_vec3 points[IL_RAD_DIRECT_POINTS], float weights[IL_RAD_DIRECT_POINTS])
 {
     il_vec3 c0 = mesh->positions[p->v[0]], c1 = mesh->positions[p->v[1]],
@@ -122,10 +122,10 @@ static bool has_delta_lights(const il_scene *scene)
 }
 
 /* Mean irradiance over the patch from the delta lights and the sky. */
-static il_vec3 patch_irradiance(const il_scene *scene, const il_rad_mesh *mesh, uint32_t i,
+static il_vec3 patch_irradiance(const il_scene *scene, const il_patch_mesh *mesh, uint32_t i,
                                 uint64_t seed, bool delta, bool sky)
 {
-    const il_rad_patch *patch = &mesh->patches[i];
+    const il_patch *patch = &mesh->patches[i];
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed, 0x7261646469726563ull /* "raddirec" */), i);
     il_vec3 points[IL_RAD_DIRECT_POINTS];
     float weights[IL_RAD_DIRECT_POINTS];
@@ -156,7 +156,7 @@ static il_vec3 patch_irradiance(const il_scene *scene, const il_rad_mesh *mesh, 
     return e;
 }
 
-il_status il_rad_direct(const il_scene *scene, const il_rad_mesh *mesh,
+il_status il_rad_direct(const il_scene *scene, const il_patch_mesh *mesh,
                         const il_rad_settings *settings, il_rad_solution *sol, il_error *err)
 {
     if (!scene || !mesh || !settings || !sol || sol->num_patches != mesh->num_patches)
@@ -166,7 +166,7 @@ il_status il_rad_direct(const il_scene *scene, const il_rad_mesh *mesh,
     uint32_t n = mesh->num_patches;
 #pragma omp parallel for schedule(dynamic, 32) num_threads(settings->threads)
     for (uint32_t i = 0; i < n; i++) {
-        const il_rad_patch *p = &mesh->patches[i];
+        const il_patch *p = &mesh->patches[i];
         il_vec3 d = p->emission;
         if ((delta || sky) && !v3_is_zero(p->rho)) {
             il_vec3 e = patch_irradiance(scene, mesh, i, settings->seed, delta, sky);

@@ -10,7 +10,7 @@
 #define IL_FF_DEFAULT_RAYS 4096u
 
 struct il_ff {
-    const il_rad_mesh *mesh;
+    const il_patch_mesh *mesh;
     il_rad_settings settings;
     il_hemicube *hemicube;      /* IL_FF_HEMICUBE only */
 };
@@ -54,7 +54,7 @@ void il_ff_row_compact(float *scratch, uint32_t num_patches, float scale, il_ff_
     }
 }
 
-il_status il_ff_create(const il_rad_mesh *mesh, const il_rad_settings *settings, il_ff **out,
+il_status il_ff_create(const il_patch_mesh *mesh, const il_rad_settings *settings, il_ff **out,
                        il_error *err)
 {
     *out = NULL;

@@ -13,7 +13,7 @@ void il_ff_row_compact(float *scratch, uint32_t num_patches, float scale, il_ff_
 /* il_ff_ray_row with a caller's buffer `order` of 2 * samples il_vec2 (or
  * NULL): with it the rays are traced in direction-stratum order, which is
  * faster; the row is the same either way. */
-void il_ff_ray_row_ordered(const il_rad_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
+void il_ff_ray_row_ordered(const il_patch_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
                            float *scratch, il_vec2 *order, il_ff_row *out);
 
 #endif

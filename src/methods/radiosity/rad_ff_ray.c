@@ -133,21 +133,21 @@ static inline il_ray make_ray(const ray_setup *rs, il_vec2 up, il_vec2 ud)
 /* Traces n rays and counts the first hits on the front of patches other
  * than i.  The patch of each hit first, prefetching its normal (the
  * patches are large and hit in no order), then the front test. */
-static void trace_batch(const il_rad_mesh *mesh, uint32_t i, const il_ray *rays, il_hit *hits,
+static void trace_batch(const il_patch_mesh *mesh, uint32_t i, const il_ray *rays, il_hit *hits,
                         uint32_t n, float *scratch, il_ff_row *out)
 {
     il_trace_closest_n(mesh->tracer, rays, hits, n);
     uint32_t hit_patch[IL_FF_RAY_BATCH];
     for (uint32_t r = 0; r < n; r++) {
-        uint32_t j = hits[r].mesh == IL_HIT_NONE ? IL_RAD_NO_PATCH : mesh->tri_patch[hits[r].prim];
-        hit_patch[r] = j == i ? IL_RAD_NO_PATCH : j;
-        if (hit_patch[r] != IL_RAD_NO_PATCH)
+        uint32_t j = hits[r].mesh == IL_HIT_NONE ? IL_NO_PATCH : mesh->tri_patch[hits[r].prim];
+        hit_patch[r] = j == i ? IL_NO_PATCH : j;
+        if (hit_patch[r] != IL_NO_PATCH)
             __builtin_prefetch(&mesh->patches[j].normal);
     }
     for (uint32_t r = 0; r < n; r++) {
         uint32_t j = hit_patch[r];
         /* Only the front of a patch receives. */
-        if (j == IL_RAD_NO_PATCH || v3_dot(rays[r].dir, mesh->patches[j].normal) >= 0.0f)
+        if (j == IL_NO_PATCH || v3_dot(rays[r].dir, mesh->patches[j].normal) >= 0.0f)
             continue;
         if (scratch[j] == 0.0f)
             out->index[out->count++] = j;
@@ -155,13 +155,13 @@ static void trace_batch(const il_rad_mesh *mesh, uint32_t i, const il_ray *rays,
     }
 }
 
-void il_ff_ray_row_ordered(const il_rad_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
+void il_ff_ray_row_ordered(const il_patch_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
                            float *scratch, il_vec2 *order, il_ff_row *out)
 {
     out->count = 0;
     if (i >= mesh->num_patches || samples == 0 || !mesh->tracer)
         return;
-    const il_rad_patch *p = &mesh->patches[i];
+    const il_patch *p = &mesh->patches[i];
     ray_setup rs;
     rs.frame = il_frame_from_normal(p->normal);
     rs.num_corners = p->num_corners == 4 ? 4 : 3;
@@ -228,7 +228,7 @@ void il_ff_ray_row_ordered(const il_rad_mesh *mesh, uint32_t samples, uint64_t s
     il_ff_row_compact(scratch, mesh->num_patches, 1.0f / (float)samples, out);
 }
 
-void il_ff_ray_row(const il_rad_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
+void il_ff_ray_row(const il_patch_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
                    float *scratch, il_ff_row *out)
 {
     /* The same row with or without the buffer (only the tracing order

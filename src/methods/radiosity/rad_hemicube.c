@@ -84,7 +84,7 @@ typedef struct il_hc_chunk {
 } il_hc_chunk;
 
 struct il_hemicube {
-    const il_rad_mesh *mesh;
+    const il_patch_mesh *mesh;
     uint32_t res, half;
     float *top;              /* octant: index hi*(hi+1)/2 + lo of the folded pixel */
     float *side;             /* quadrant: [row in z][folded column] */
@@ -137,7 +137,7 @@ static void chunk_close(il_hemicube *hc, il_hc_chunk *ch)
 
 static void build_items(il_hemicube *hc)
 {
-    const il_rad_mesh *mesh = hc->mesh;
+    const il_patch_mesh *mesh = hc->mesh;
     uint32_t n = 0;
     il_hc_chunk *ch = NULL;
     uint32_t prev_surface = UINT32_MAX;
@@ -146,7 +146,7 @@ static void build_items(il_hemicube *hc)
         il_vec3 c[4];
         uint32_t surface;
         if (j < mesh->num_patches) {
-            const il_rad_patch *pa = &mesh->patches[j];
+            const il_patch *pa = &mesh->patches[j];
             it->corners = pa->num_corners == 4 ? 4 : 3;
             for (uint32_t k = 0; k < 4; k++)
                 c[k] = mesh->positions[pa->v[k < it->corners ? k : 0]];
@@ -154,7 +154,7 @@ static void build_items(il_hemicube *hc)
             surface = pa->surface;
             j++;
         } else {
-            if (mesh->tri_patch[t] != IL_RAD_NO_PATCH) {
+            if (mesh->tri_patch[t] != IL_NO_PATCH) {
                 t++;
                 continue;
             }
@@ -201,7 +201,7 @@ static void build_items(il_hemicube *hc)
     hc->num_items = n;
 }
 
-il_status il_hemicube_create(const il_rad_mesh *mesh, uint32_t resolution, il_hemicube **out,
+il_status il_hemicube_create(const il_patch_mesh *mesh, uint32_t resolution, il_hemicube **out,
                              il_error *err)
 {
     *out = NULL;
@@ -217,7 +217,7 @@ il_status il_hemicube_create(const il_rad_mesh *mesh, uint32_t resolution, il_he
     uint32_t h = hc->half = resolution / 2;
     size_t num_items = mesh->num_patches;
     for (uint32_t t = 0; t < mesh->num_tris; t++)
-        num_items += mesh->tri_patch[t] == IL_RAD_NO_PATCH;
+        num_items += mesh->tri_patch[t] == IL_NO_PATCH;
     size_t cap = num_items ? num_items : 1;
     /* At most one chunk per item; usually ~num_items / 64. */
     hc->top = il_malloc((size_t)h * (h + 1) / 2 * sizeof(float), err);
@@ -859,11 +859,11 @@ static void gather(const il_hemicube *hc, il_hemicube_buffers *buf, il_ff_row *o
 
 void il_hemicube_row(const il_hemicube *hc, il_hemicube_buffers *buf, uint32_t i, il_ff_row *out)
 {
-    const il_rad_mesh *mesh = hc->mesh;
+    const il_patch_mesh *mesh = hc->mesh;
     out->count = 0;
     if (i >= mesh->num_patches)
         return;
-    const il_rad_patch *pi = &mesh->patches[i];
+    const il_patch *pi = &mesh->patches[i];
     il_frame fr = il_frame_from_normal(pi->normal);
     il_vec3 c = pi->center;
     /* The near plane: far below the patch's size, far above float noise. */

@@ -123,7 +123,7 @@ il_status il_rad_rows_fetch(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cac
     return IL_OK;
 }
 
-double il_rad_power(const il_rad_mesh *mesh, const il_vec3 *v)
+double il_rad_power(const il_patch_mesh *mesh, const il_vec3 *v)
 {
     double p = 0.0;
     for (uint32_t i = 0; i < mesh->num_patches; i++)
@@ -131,7 +131,7 @@ double il_rad_power(const il_rad_mesh *mesh, const il_vec3 *v)
     return p;
 }
 
-il_status il_rad_solve(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                        const il_rad_settings *settings, il_rad_solution *sol,
                        il_radiosity_stats *stats, il_error *err)
 {

@@ -30,6 +30,6 @@ size_t il_rad_rows_bytes(const il_rad_rows *rows);
 
 /* Sum_i A_i lum(v_i): the luminance power of a per-patch radiance array
  * (up to the factor pi), summed in patch order. */
-double il_rad_power(const il_rad_mesh *mesh, const il_vec3 *v);
+double il_rad_power(const il_patch_mesh *mesh, const il_vec3 *v);
 
 #endif

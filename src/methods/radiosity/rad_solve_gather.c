@@ -31,7 +31,7 @@ static uint32_t block_size(int threads, uint32_t n)
 }
 
 /* Ld_i + rho_i sum_j F_ij L_j. */
-static il_vec3 gather(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i,
+static il_vec3 gather(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t i,
                       const il_vec3 *direct, const il_vec3 *L)
 {
     double r = 0.0, g = 0.0, b = 0.0;
@@ -50,7 +50,7 @@ static il_vec3 gather(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i,
 
 static il_vec3 v3_abs(il_vec3 a) { return v3(fabsf(a.x), fabsf(a.y), fabsf(a.z)); }
 
-il_status il_rad_solve_gathering(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                                  const il_rad_settings *settings, il_rad_solution *sol,
                                  il_radiosity_stats *stats, il_error *err)
 {

@@ -39,7 +39,7 @@ typedef struct shoot_scan {
 
 /* One pass over the patches: the total unshot power and the patches with the
  * most of it (ties go to the lower index, so the choice is deterministic). */
-static void scan_unshot(const il_rad_mesh *mesh, const il_vec3 *unshot, shoot_scan *s)
+static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, shoot_scan *s)
 {
     double top[IL_RAD_SHOOT_BATCH];
     double sum_r = 0.0, sum_g = 0.0, sum_b = 0.0, total = 0.0;
@@ -71,7 +71,7 @@ static void scan_unshot(const il_rad_mesh *mesh, const il_vec3 *unshot, shoot_sc
 }
 
 /* Shoots patch i's unshot radiance along its row. */
-static void shoot(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i, il_rad_solution *sol)
+static void shoot(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t i, il_rad_solution *sol)
 {
     il_vec3 u = sol->unshot[i];
     sol->unshot[i] = v3s(0.0f);
@@ -80,7 +80,7 @@ static void shoot(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i, il_
         uint32_t j = row->index[k];
         if (j == i)
             continue; /* a planar patch does not see itself */
-        const il_rad_patch *pj = &mesh->patches[j];
+        const il_patch *pj = &mesh->patches[j];
         if (!(pj->area > 0.0f))
             continue;
         float s = row->value[k] * ai / pj->area;
@@ -91,11 +91,11 @@ static void shoot(const il_rad_mesh *mesh, const il_ff_row *row, uint32_t i, il_
 }
 
 /* R = 1 / (1 - rho_avg) per channel (Cohen et al. 1988, eq. 6). */
-static il_vec3 interreflection(const il_rad_mesh *mesh)
+static il_vec3 interreflection(const il_patch_mesh *mesh)
 {
     double r = 0.0, g = 0.0, b = 0.0, area = 0.0;
     for (uint32_t i = 0; i < mesh->num_patches; i++) {
-        const il_rad_patch *p = &mesh->patches[i];
+        const il_patch *p = &mesh->patches[i];
         r += (double)p->area * p->rho.x;
         g += (double)p->area * p->rho.y;
         b += (double)p->area * p->rho.z;
@@ -114,7 +114,7 @@ static il_vec3 ambient_term(il_vec3 R, il_vec3 unshot_sum, double total_area)
     return v3_scale(v3_mul(R, unshot_sum), inv);
 }
 
-il_status il_rad_solve_shooting(const il_rad_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
                                 const il_rad_settings *settings, il_rad_solution *sol,
                                 il_radiosity_stats *stats, il_error *err)
 {

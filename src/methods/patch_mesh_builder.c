@@ -1,14 +1,14 @@
-/* Radiosity meshing, step 3: the builder that grows an il_rad_mesh.
+/* Radiosity meshing, step 3: the builder that grows an il_patch_mesh.
  *
  * Vertices are welded by exact position within one surface (a hash table of
  * vertex ids keyed by surface and position bits); the subdivision computes
- * shared points bitwise-equal on purpose (il_rad_edge_point), so no tolerance
+ * shared points bitwise-equal on purpose (il_patch_edge_point), so no tolerance
  * is needed, and vertices of different surfaces are never merged. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
-#include "methods/radiosity/rad_mesh_internal.h"
+#include "methods/patch_mesh_internal.h"
 #include "scene/bsdf.h"
 
 #define NONE UINT32_MAX
@@ -30,7 +30,7 @@ static size_t hash_key(uint32_t surface, il_vec3 p)
     return (size_t)(h ^ (h >> 32));
 }
 
-static bool same_key(const il_rad_mesh *m, uint32_t id, uint32_t surface, il_vec3 p)
+static bool same_key(const il_patch_mesh *m, uint32_t id, uint32_t surface, il_vec3 p)
 {
     il_vec3 q = m->positions[id];
     return m->vertex_surface[id] == surface && fbits(q.x) == fbits(p.x) &&
@@ -38,7 +38,7 @@ static bool same_key(const il_rad_mesh *m, uint32_t id, uint32_t surface, il_vec
 }
 
 /* The slot holding (surface, p), or the empty slot where it belongs. */
-static size_t find_slot(const il_rad_builder *b, uint32_t surface, il_vec3 p)
+static size_t find_slot(const il_patch_builder *b, uint32_t surface, il_vec3 p)
 {
     size_t h = hash_key(surface, p) & b->slot_mask;
     while (b->slots[h] != NONE && !same_key(b->m, b->slots[h], surface, p))
@@ -46,7 +46,7 @@ static size_t find_slot(const il_rad_builder *b, uint32_t surface, il_vec3 p)
     return h;
 }
 
-static bool grow(void **ptr, size_t *cap, size_t need, size_t elem, il_rad_builder *b)
+static bool grow(void **ptr, size_t *cap, size_t need, size_t elem, il_patch_builder *b)
 {
     if (need <= *cap)
         return true;
@@ -63,7 +63,7 @@ static bool grow(void **ptr, size_t *cap, size_t need, size_t elem, il_rad_build
     return true;
 }
 
-static bool rehash(il_rad_builder *b, size_t cap)
+static bool rehash(il_patch_builder *b, size_t cap)
 {
     uint32_t *slots = malloc(cap * sizeof *slots);
     if (!slots) {
@@ -82,7 +82,7 @@ static bool rehash(il_rad_builder *b, size_t cap)
     return true;
 }
 
-il_status il_rad_builder_init(il_rad_builder *b, const il_scene *scene, size_t expect_vertices,
+il_status il_patch_builder_init(il_patch_builder *b, const il_scene *scene, size_t expect_vertices,
                               size_t expect_patches, size_t expect_tris, il_error *err)
 {
     memset(b, 0, sizeof *b);
@@ -91,7 +91,7 @@ il_status il_rad_builder_init(il_rad_builder *b, const il_scene *scene, size_t e
     b->m = il_calloc(1, sizeof *b->m, err);
     if (!b->m)
         return IL_ERR_MEMORY;
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     size_t nv = expect_vertices + 2, np = expect_patches + 1, nt = expect_tris + 1;
     m->positions = il_malloc(nv * sizeof *m->positions, err);
     m->vertex_surface = il_malloc(nv * sizeof *m->vertex_surface, err);
@@ -102,7 +102,7 @@ il_status il_rad_builder_init(il_rad_builder *b, const il_scene *scene, size_t e
     m->tri_src_prim = il_malloc(nt * sizeof *m->tri_src_prim, err);
     if (!m->positions || !m->vertex_surface || !m->patches || !m->tri_indices || !m->tri_patch ||
         !m->tri_src_mesh || !m->tri_src_prim) {
-        il_rad_builder_abort(b);
+        il_patch_builder_abort(b);
         return IL_ERR_MEMORY;
     }
     b->cap_vertices = nv;
@@ -112,15 +112,15 @@ il_status il_rad_builder_init(il_rad_builder *b, const il_scene *scene, size_t e
     while (cap < 2 * nv)
         cap *= 2;
     if (!rehash(b, cap)) {
-        il_rad_builder_abort(b);
+        il_patch_builder_abort(b);
         return IL_ERR_MEMORY;
     }
     return IL_OK;
 }
 
-uint32_t il_rad_builder_vertex(il_rad_builder *b, uint32_t surface, il_vec3 p)
+uint32_t il_patch_builder_vertex(il_patch_builder *b, uint32_t surface, il_vec3 p)
 {
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     size_t h = find_slot(b, surface, p);
     if (b->slots[h] != NONE)
         return b->slots[h];
@@ -148,9 +148,9 @@ uint32_t il_rad_builder_vertex(il_rad_builder *b, uint32_t surface, il_vec3 p)
     return id;
 }
 
-static bool reserve_tris(il_rad_builder *b, size_t more)
+static bool reserve_tris(il_patch_builder *b, size_t more)
 {
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     size_t need = (size_t)m->num_tris + more;
     if (need <= b->cap_tris)
         return true;
@@ -164,7 +164,7 @@ static bool reserve_tris(il_rad_builder *b, size_t more)
     return true;
 }
 
-static void push_tri(il_rad_mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t patch,
+static void push_tri(il_patch_mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t patch,
                      uint32_t mesh, uint32_t prim)
 {
     uint32_t t = m->num_tris++;
@@ -244,12 +244,12 @@ static void dcross(il_vec3 a, il_vec3 b, double out[3])
 
 static double dnorm(const double a[3]) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
-il_status il_rad_builder_patch(il_rad_builder *b, uint32_t surface, uint32_t num_corners,
+il_status il_patch_builder_patch(il_patch_builder *b, uint32_t surface, uint32_t num_corners,
                                const uint32_t v[4], const uint32_t *cand, uint32_t num_cand)
 {
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     const il_scene *scene = b->scene;
-    const il_rad_surface *surf = &m->surfaces[surface];
+    const il_patch_surface *surf = &m->surfaces[surface];
     il_vec3 c[4];
     for (uint32_t k = 0; k < num_corners; k++)
         c[k] = m->positions[v[k]];
@@ -281,7 +281,7 @@ il_status il_rad_builder_patch(il_rad_builder *b, uint32_t surface, uint32_t num
     if (!(area > 0.0f) || !isfinite(area))
         return IL_OK; /* zero-area patch: skipped, never divided by */
 
-    il_rad_patch p = {.num_corners = num_corners, .surface = surface};
+    il_patch p = {.num_corners = num_corners, .surface = surface};
     memcpy(p.v, v, num_corners * sizeof *v);
     p.normal = v3((float)(n[0] / len), (float)(n[1] / len), (float)(n[2] / len));
     p.area = area;
@@ -340,13 +340,13 @@ il_status il_rad_builder_patch(il_rad_builder *b, uint32_t surface, uint32_t num
         src[1] = locate(sm, cand, num_cand, g1, &b1, &b2);
     }
     const uint32_t src_mesh[2] = {surf->mesh, surf->mesh};
-    return il_rad_builder_copy_patch(b, &p, src_mesh, src);
+    return il_patch_builder_copy_patch(b, &p, src_mesh, src);
 }
 
-il_status il_rad_builder_copy_patch(il_rad_builder *b, const il_rad_patch *p,
+il_status il_patch_builder_copy_patch(il_patch_builder *b, const il_patch *p,
                                     const uint32_t src_mesh[2], const uint32_t src_prim[2])
 {
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     if (m->num_patches >= UINT32_MAX - 1)
         return il_fail(b->err, IL_ERR_MEMORY, "radiosity: too many patches");
     if (!grow((void **)&m->patches, &b->cap_patches, (size_t)m->num_patches + 1, sizeof *m->patches,
@@ -361,12 +361,12 @@ il_status il_rad_builder_copy_patch(il_rad_builder *b, const il_rad_patch *p,
     return IL_OK;
 }
 
-il_status il_rad_builder_raw_tri(il_rad_builder *b, const uint32_t v[3], uint32_t mesh,
+il_status il_patch_builder_raw_tri(il_patch_builder *b, const uint32_t v[3], uint32_t mesh,
                                  uint32_t prim)
 {
     if (!reserve_tris(b, 1))
         return IL_ERR_MEMORY;
-    push_tri(b->m, v[0], v[1], v[2], IL_RAD_NO_PATCH, mesh, prim);
+    push_tri(b->m, v[0], v[1], v[2], IL_NO_PATCH, mesh, prim);
     return IL_OK;
 }
 
@@ -376,9 +376,9 @@ static void *shrink(void *p, size_t bytes)
     return q ? q : p;
 }
 
-il_status il_rad_builder_finish(il_rad_builder *b, il_rad_mesh **out)
+il_status il_patch_builder_finish(il_patch_builder *b, il_patch_mesh **out)
 {
-    il_rad_mesh *m = b->m;
+    il_patch_mesh *m = b->m;
     free(b->slots);
     b->slots = NULL;
     m->positions = shrink(m->positions, ((size_t)m->num_vertices + 1) * sizeof *m->positions);
@@ -393,7 +393,7 @@ il_status il_rad_builder_finish(il_rad_builder *b, il_rad_mesh **out)
                                               m->num_tris, &m->tracer, b->err);
     b->m = NULL;
     if (st != IL_OK) {
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
         *out = NULL;
         return st;
     }
@@ -401,9 +401,9 @@ il_status il_rad_builder_finish(il_rad_builder *b, il_rad_mesh **out)
     return IL_OK;
 }
 
-void il_rad_builder_abort(il_rad_builder *b)
+void il_patch_builder_abort(il_patch_builder *b)
 {
     free(b->slots);
-    il_rad_mesh_release(b->m);
+    il_patch_mesh_release(b->m);
     memset(b, 0, sizeof *b);
 }

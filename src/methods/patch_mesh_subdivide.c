@@ -8,7 +8,7 @@
  * nu = ceil(longer of the two u edges / s), nv likewise, and a triangle
  * n^2 triangles with n = ceil(longest edge / s).
  *
- * Points on an element's boundary are computed by il_rad_edge_point from the
+ * Points on an element's boundary are computed by il_patch_edge_point from the
  * edge's two corners in a canonical order, so two elements of one surface
  * that share an edge weld their common points exactly.  Where neighbouring
  * elements get different counts along a shared edge (patch-size meshing of
@@ -17,9 +17,9 @@
  * radiance, and the patches still tile the surface without gaps or overlap. */
 #include <math.h>
 
-#include "methods/radiosity/rad_mesh_internal.h"
+#include "methods/patch_mesh_internal.h"
 
-il_vec3 il_rad_edge_point(uint32_t ida, il_vec3 pa, uint32_t idb, il_vec3 pb, uint32_t k,
+il_vec3 il_patch_edge_point(uint32_t ida, il_vec3 pa, uint32_t idb, il_vec3 pb, uint32_t k,
                           uint32_t n)
 {
     if (idb < ida) {
@@ -50,7 +50,7 @@ static double cells(double len, double size)
     return n >= 1.0 ? n : (n != n ? n : 1.0); /* NaN stays NaN for the caller's check */
 }
 
-double il_rad_elem_grid(const il_rad_elem *e, const il_rad_settings *s, double *nu, double *nv)
+double il_patch_elem_grid(const il_patch_elem *e, const il_patch_sizing *s, double *nu, double *nv)
 {
     if (s->subdivisions > 0) {
         *nu = *nv = ldexp(1.0, (int)(s->subdivisions > 1000 ? 1000 : s->subdivisions));
@@ -76,7 +76,7 @@ static il_vec3 bilinear(const il_vec3 p[4], double u, double v)
               (float)(w0 * p[0].z + w1 * p[1].z + w2 * p[2].z + w3 * p[3].z));
 }
 
-static il_status emit_quad(il_rad_builder *b, const il_rad_elem *e, uint32_t nu, uint32_t nv,
+static il_status emit_quad(il_patch_builder *b, const il_patch_elem *e, uint32_t nu, uint32_t nv,
                            uint32_t *g)
 {
     const uint32_t *id = e->id;
@@ -86,16 +86,16 @@ static il_status emit_quad(il_rad_builder *b, const il_rad_elem *e, uint32_t nu,
         for (uint32_t i = 0; i <= nu; i++) {
             il_vec3 q;
             if (j == 0)
-                q = il_rad_edge_point(id[0], p[0], id[1], p[1], i, nu);
+                q = il_patch_edge_point(id[0], p[0], id[1], p[1], i, nu);
             else if (j == nv)
-                q = il_rad_edge_point(id[3], p[3], id[2], p[2], i, nu);
+                q = il_patch_edge_point(id[3], p[3], id[2], p[2], i, nu);
             else if (i == 0)
-                q = il_rad_edge_point(id[0], p[0], id[3], p[3], j, nv);
+                q = il_patch_edge_point(id[0], p[0], id[3], p[3], j, nv);
             else if (i == nu)
-                q = il_rad_edge_point(id[1], p[1], id[2], p[2], j, nv);
+                q = il_patch_edge_point(id[1], p[1], id[2], p[2], j, nv);
             else
                 q = bilinear(p, (double)i / nu, (double)j / nv);
-            uint32_t vid = il_rad_builder_vertex(b, e->surface, q);
+            uint32_t vid = il_patch_builder_vertex(b, e->surface, q);
             if (vid == UINT32_MAX)
                 return IL_ERR_MEMORY;
             g[j * row + i] = vid;
@@ -105,14 +105,14 @@ static il_status emit_quad(il_rad_builder *b, const il_rad_elem *e, uint32_t nu,
         for (uint32_t i = 0; i < nu; i++) {
             const uint32_t v[4] = {g[j * row + i], g[j * row + i + 1], g[(j + 1) * row + i + 1],
                                    g[(j + 1) * row + i]};
-            il_status st = il_rad_builder_patch(b, e->surface, 4, v, e->src, ncand);
+            il_status st = il_patch_builder_patch(b, e->surface, 4, v, e->src, ncand);
             if (st != IL_OK)
                 return st;
         }
     return IL_OK;
 }
 
-static il_status emit_triangle(il_rad_builder *b, const il_rad_elem *e, uint32_t n, uint32_t *g)
+static il_status emit_triangle(il_patch_builder *b, const il_patch_elem *e, uint32_t n, uint32_t *g)
 {
     const uint32_t *id = e->id;
     const il_vec3 *p = e->p;
@@ -121,11 +121,11 @@ static il_status emit_triangle(il_rad_builder *b, const il_rad_elem *e, uint32_t
         for (uint32_t i = 0; i + j <= n; i++) {
             il_vec3 q;
             if (j == 0)
-                q = il_rad_edge_point(id[0], p[0], id[1], p[1], i, n);
+                q = il_patch_edge_point(id[0], p[0], id[1], p[1], i, n);
             else if (i == 0)
-                q = il_rad_edge_point(id[0], p[0], id[2], p[2], j, n);
+                q = il_patch_edge_point(id[0], p[0], id[2], p[2], j, n);
             else if (i + j == n)
-                q = il_rad_edge_point(id[1], p[1], id[2], p[2], j, n);
+                q = il_patch_edge_point(id[1], p[1], id[2], p[2], j, n);
             else {
                 /* Barycentric grid point (i/n, j/n) of corners 1 and 2. */
                 double b1 = (double)i / n, b2 = (double)j / n, b0 = 1.0 - b1 - b2;
@@ -133,7 +133,7 @@ static il_status emit_triangle(il_rad_builder *b, const il_rad_elem *e, uint32_t
                        (float)(b0 * p[0].y + b1 * p[1].y + b2 * p[2].y),
                        (float)(b0 * p[0].z + b1 * p[1].z + b2 * p[2].z));
             }
-            uint32_t vid = il_rad_builder_vertex(b, e->surface, q);
+            uint32_t vid = il_patch_builder_vertex(b, e->surface, q);
             if (vid == UINT32_MAX)
                 return IL_ERR_MEMORY;
             g[j * row + i] = vid;
@@ -143,20 +143,20 @@ static il_status emit_triangle(il_rad_builder *b, const il_rad_elem *e, uint32_t
             /* The upright triangle at (i, j), then the inverted one beside
              * it; both keep the element's counter-clockwise order. */
             const uint32_t up[4] = {g[j * row + i], g[j * row + i + 1], g[(j + 1) * row + i], 0};
-            il_status st = il_rad_builder_patch(b, e->surface, 3, up, e->src, 1);
+            il_status st = il_patch_builder_patch(b, e->surface, 3, up, e->src, 1);
             if (st != IL_OK)
                 return st;
             if (i + j + 1 < n) {
                 const uint32_t down[4] = {g[j * row + i + 1], g[(j + 1) * row + i + 1],
                                           g[(j + 1) * row + i], 0};
-                if ((st = il_rad_builder_patch(b, e->surface, 3, down, e->src, 1)) != IL_OK)
+                if ((st = il_patch_builder_patch(b, e->surface, 3, down, e->src, 1)) != IL_OK)
                     return st;
             }
         }
     return IL_OK;
 }
 
-il_status il_rad_elem_emit(il_rad_builder *b, const il_rad_elem *e, uint32_t nu, uint32_t nv,
+il_status il_patch_elem_emit(il_patch_builder *b, const il_patch_elem *e, uint32_t nu, uint32_t nv,
                            uint32_t *scratch)
 {
     return e->num_corners == 4 ? emit_quad(b, e, nu, nv, scratch)

@@ -5,9 +5,9 @@
  * between two surfaces, so the mean never mixes a wall with its neighbour. */
 #include <stdlib.h>
 
-#include "methods/radiosity/rad.h"
+#include "methods/patch_mesh.h"
 
-void il_rad_vertex_radiance(const il_rad_mesh *mesh, const il_vec3 *patch_radiance,
+void il_patch_vertex_radiance(const il_patch_mesh *mesh, const il_vec3 *patch_radiance,
                             il_vec3 *out)
 {
     uint32_t nv = mesh->num_vertices;
@@ -18,7 +18,7 @@ void il_rad_vertex_radiance(const il_rad_mesh *mesh, const il_vec3 *patch_radian
      * the radiance of the last patch that uses it instead (flat shading). */
     float *weight = calloc(nv ? nv : 1, sizeof *weight);
     for (uint32_t i = 0; i < mesh->num_patches; i++) {
-        const il_rad_patch *p = &mesh->patches[i];
+        const il_patch *p = &mesh->patches[i];
         for (uint32_t c = 0; c < p->num_corners; c++) {
             uint32_t v = p->v[c];
             if (weight) {

@@ -108,14 +108,14 @@ static il_scene *make_box(float s, bool one_mesh)
     return scene;
 }
 
-static il_rad_settings settings_of(float patch_size, uint32_t subdivisions)
+static il_patch_sizing settings_of(float patch_size, uint32_t subdivisions)
 {
-    return (il_rad_settings){.patch_size = patch_size, .subdivisions = subdivisions, .threads = 1};
+    return (il_patch_sizing){.patch_size = patch_size, .subdivisions = subdivisions};
 }
 
 /* ------------------------------------------------------------ mesh checks */
 
-static double total_area(const il_rad_mesh *m)
+static double total_area(const il_patch_mesh *m)
 {
     double a = 0.0;
     for (uint32_t i = 0; i < m->num_patches; i++)
@@ -142,11 +142,11 @@ static int cmp_vkey(const void *a, const void *b)
 /* Invariants every mesh must satisfy: corners of one surface, counter-
  * clockwise around the normal, positive areas, consistent triangles, no two
  * vertices of one surface at one position. */
-static void check_invariants(const il_rad_mesh *m)
+static void check_invariants(const il_patch_mesh *m)
 {
     uint32_t bad_surface = 0, bad_winding = 0, bad_area = 0, bad_normal = 0;
     for (uint32_t i = 0; i < m->num_patches; i++) {
-        const il_rad_patch *p = &m->patches[i];
+        const il_patch *p = &m->patches[i];
         for (uint32_t k = 0; k < p->num_corners; k++)
             bad_surface += m->vertex_surface[p->v[k]] != p->surface;
         for (uint32_t k = 0; k < p->num_corners; k++) {
@@ -168,7 +168,7 @@ static void check_invariants(const il_rad_mesh *m)
     for (uint32_t t = 0; t < m->num_tris; t++) {
         CHECK(m->tri_indices[3 * t] < m->num_vertices && m->tri_indices[3 * t + 1] < m->num_vertices &&
               m->tri_indices[3 * t + 2] < m->num_vertices);
-        if (m->tri_patch[t] != IL_RAD_NO_PATCH)
+        if (m->tri_patch[t] != IL_NO_PATCH)
             count[m->tri_patch[t]]++;
     }
     uint32_t bad_count = 0;
@@ -188,7 +188,7 @@ static void check_invariants(const il_rad_mesh *m)
     free(keys);
 }
 
-static uint32_t vertices_of_surface(const il_rad_mesh *m, uint32_t s)
+static uint32_t vertices_of_surface(const il_patch_mesh *m, uint32_t s)
 {
     uint32_t n = 0;
     for (uint32_t v = 0; v < m->num_vertices; v++)
@@ -204,9 +204,9 @@ static void test_box_levels(void)
     il_scene *scene = make_box(2.0f, false);
     const uint32_t levels[3] = {0, 5, 6}, expect[3] = {6, 6144, 24576};
     for (int l = 0; l < 3; l++) {
-        il_rad_settings s = settings_of(100.0f, levels[l]);
-        il_rad_mesh *m = NULL;
-        CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+        il_patch_sizing s = settings_of(100.0f, levels[l]);
+        il_patch_mesh *m = NULL;
+        CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
         if (!m)
             continue;
         CHECK(m->num_patches == expect[l]);
@@ -220,11 +220,11 @@ static void test_box_levels(void)
         CHECK(m->num_vertices == 6 * side * side);
         uint32_t quads = 0, inward = 0, lit = 0;
         for (uint32_t i = 0; i < m->num_patches; i++) {
-            const il_rad_patch *p = &m->patches[i];
+            const il_patch *p = &m->patches[i];
             quads += p->num_corners == 4;
             il_vec3 to_centre = v3_sub(v3(1, 1, 1), p->center);
             inward += v3_dot(p->normal, to_centre) > 0.0f;
-            const il_rad_surface *su = &m->surfaces[p->surface];
+            const il_patch_surface *su = &m->surfaces[p->surface];
             il_vec3 kd = scene->materials[su->material].diffuse;
             CHECK_NEAR(p->rho.x, kd.x, 1e-6);
             if (!v3_is_zero(p->emission)) {
@@ -245,7 +245,7 @@ static void test_box_levels(void)
                 CHECK(m->surfaces[i].mesh == i);
             }
         }
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -257,9 +257,9 @@ static void test_box_one_mesh(void)
     il_error err = {0};
     il_scene *scene = make_box(1.0f, true);
     for (uint32_t level = 0; level <= 2; level++) {
-        il_rad_settings s = settings_of(100.0f, level);
-        il_rad_mesh *m = NULL;
-        CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+        il_patch_sizing s = settings_of(100.0f, level);
+        il_patch_mesh *m = NULL;
+        CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
         if (!m)
             continue;
         uint32_t n = 1u << level;
@@ -272,7 +272,7 @@ static void test_box_one_mesh(void)
         for (uint32_t i = 0; i < m->num_patches; i++)
             quads += m->patches[i].num_corners == 4;
         CHECK(quads == m->num_patches);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -308,9 +308,9 @@ static void test_patch_size(void)
     const float sizes[3] = {0.25f, 0.3f, 2.0f};
     const uint32_t expect[3] = {16, 16, 1};
     for (int k = 0; k < 3; k++) {
-        il_rad_settings s = settings_of(sizes[k], 0);
-        il_rad_mesh *m = NULL;
-        CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+        il_patch_sizing s = settings_of(sizes[k], 0);
+        il_patch_mesh *m = NULL;
+        CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
         if (!m)
             continue;
         CHECK(m->num_patches == expect[k]);
@@ -321,16 +321,16 @@ static void test_patch_size(void)
             CHECK_NEAR(m->patches[i].area, 1.0 / expect[k], 1e-6);
             CHECK_NEAR(m->patches[i].rho.y, 0.4, 1e-6);
         }
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 
     /* 2 x 1 m at 0.5 m: 4 x 2 cells of 0.25 m^2. */
     scene = make_quad(2.0f, 1.0f, NULL, 0, IL_MATERIAL_PHONG);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    il_rad_settings s = settings_of(0.5f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(0.5f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches == 8);
         CHECK(m->num_vertices == 15);
@@ -339,7 +339,7 @@ static void test_patch_size(void)
         CHECK(m->surfaces[0].diffuse);
         CHECK_NEAR(m->patches[0].rho.x, 0.6, 1e-6); /* Phong: its diffuse albedo */
         check_invariants(m);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -366,16 +366,16 @@ static void test_texture(void)
                                 &err),
              &err);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    il_rad_settings s = settings_of(0.5f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(0.5f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches == 4);
         for (uint32_t i = 0; i < m->num_patches; i++) {
             CHECK_NEAR(m->patches[i].rho.x, 0.3, 1e-6);
             CHECK_NEAR(m->patches[i].rho.z, 0.1, 1e-6);
         }
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -398,11 +398,11 @@ static void test_triangle_surface(void)
     CHECK_OK(il_scene_commit(scene, &err), &err);
     /* Level 2: 16 triangles, 15 vertices; patch size 0.5 on a longest edge
      * of sqrt(2): n = 3, 9 triangles, 10 vertices. */
-    const il_rad_settings set[2] = {settings_of(1.0f, 2), settings_of(0.5f, 0)};
+    const il_patch_sizing set[2] = {settings_of(1.0f, 2), settings_of(0.5f, 0)};
     const uint32_t np[2] = {16, 9}, nv[2] = {15, 10};
     for (int k = 0; k < 2; k++) {
-        il_rad_mesh *m = NULL;
-        CHECK_OK(il_rad_mesh_build(scene, &set[k], &m, &err), &err);
+        il_patch_mesh *m = NULL;
+        CHECK_OK(il_patch_mesh_build(scene, &set[k], &m, &err), &err);
         if (!m)
             continue;
         CHECK(m->num_patches == np[k]);
@@ -416,7 +416,7 @@ static void test_triangle_surface(void)
             CHECK_NEAR(m->patches[i].rho.x, 0.8, 1e-6); /* the default material */
         }
         check_invariants(m);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -439,9 +439,9 @@ static void test_mirror(void)
     add_quad(scene, "mirror", mq, v3(0, 1, 0), mirror, NULL);
     add_quad(scene, "lamp", lq, v3(0, -1, 0), lamp, NULL);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    il_rad_settings s = settings_of(0.5f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(0.5f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches == 8);
         CHECK(m->num_surfaces == 3);
@@ -449,7 +449,7 @@ static void test_mirror(void)
         check_invariants(m);
         uint32_t raw = 0;
         for (uint32_t t = 0; t < m->num_tris; t++) {
-            if (m->tri_patch[t] != IL_RAD_NO_PATCH)
+            if (m->tri_patch[t] != IL_NO_PATCH)
                 continue;
             raw++;
             CHECK(m->tri_src_mesh[t] == 1);
@@ -467,9 +467,9 @@ static void test_mirror(void)
         il_hit hit;
         il_ray ray = {.org = {0.5f, 0.9f, 0.5f}, .dir = {0, -1, 0}, .tmax = 10.0f};
         CHECK(il_trace_closest(m->tracer, &ray, &hit));
-        CHECK(hit.prim < m->num_tris && m->tri_patch[hit.prim] == IL_RAD_NO_PATCH);
+        CHECK(hit.prim < m->num_tris && m->tri_patch[hit.prim] == IL_NO_PATCH);
         CHECK_NEAR(hit.t, 0.4, 1e-5);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 
@@ -483,8 +483,8 @@ static void test_mirror(void)
                                 &err),
              &err);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    m = (il_rad_mesh *)1;
-    CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+    m = (il_patch_mesh *)1;
+    CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
     CHECK(m == NULL);
     CHECK(strstr(err.message, "no diffuse surface") != NULL);
     il_scene_release(scene);
@@ -492,7 +492,7 @@ static void test_mirror(void)
 
 /* Builds a one-mesh scene from raw arrays plus a point light, meshes it at
  * a large patch size; the caller releases both. */
-static il_rad_mesh *mesh_of(const float *pos, uint32_t nv, const uint32_t *idx, uint32_t nt,
+static il_patch_mesh *mesh_of(const float *pos, uint32_t nv, const uint32_t *idx, uint32_t nt,
                             const float *normals, il_scene **scene_out)
 {
     il_error err = {0};
@@ -508,9 +508,9 @@ static il_rad_mesh *mesh_of(const float *pos, uint32_t nv, const uint32_t *idx, 
                                 &err),
              &err);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    il_rad_settings s = settings_of(100.0f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(100.0f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     *scene_out = scene;
     return m;
 }
@@ -519,7 +519,7 @@ static il_rad_mesh *mesh_of(const float *pos, uint32_t nv, const uint32_t *idx, 
 static void test_surfaces(void)
 {
     il_scene *scene;
-    il_rad_mesh *m;
+    il_patch_mesh *m;
     /* Two unit squares folded along x = 1 by 20 degrees (one surface, the
      * fold's 2 vertices shared) or by 40 degrees (two surfaces). */
     for (int k = 0; k < 2; k++) {
@@ -535,7 +535,7 @@ static void test_surfaces(void)
             CHECK(m->patches[0].num_corners == 4 && m->patches[1].num_corners == 4);
             CHECK_REL(total_area(m), 2.0, 1e-5);
             check_invariants(m);
-            il_rad_mesh_release(m);
+            il_patch_mesh_release(m);
         }
         il_scene_release(scene);
     }
@@ -553,7 +553,7 @@ static void test_surfaces(void)
             CHECK_NEAR(m->patches[1].normal.z, -1.0, 1e-6);
             CHECK_REL(total_area(m), 2.0, 1e-5);
             check_invariants(m);
-            il_rad_mesh_release(m);
+            il_patch_mesh_release(m);
         }
         il_scene_release(scene);
     }
@@ -567,7 +567,7 @@ static void test_surfaces(void)
             CHECK(m->num_patches == 1);
             CHECK_NEAR(m->patches[0].normal.z, -1.0, 1e-6);
             check_invariants(m);
-            il_rad_mesh_release(m);
+            il_patch_mesh_release(m);
         }
         il_scene_release(scene);
     }
@@ -577,9 +577,9 @@ static void test_refine(void)
 {
     il_error err = {0};
     il_scene *scene = make_box(1.0f, false);
-    il_rad_settings s = settings_of(100.0f, 1);
-    il_rad_mesh *m = NULL, *r = NULL, *r2 = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(100.0f, 1);
+    il_patch_mesh *m = NULL, *r = NULL, *r2 = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (!m) {
         il_scene_release(scene);
         return;
@@ -587,7 +587,7 @@ static void test_refine(void)
     CHECK(m->num_patches == 24);
     bool *split = calloc(m->num_patches, sizeof *split);
     split[0] = true;
-    CHECK_OK(il_rad_mesh_refine(scene, m, split, &r, &err), &err);
+    CHECK_OK(il_patch_mesh_refine(scene, m, split, &r, &err), &err);
     if (r) {
         CHECK(r->num_patches == 27);
         CHECK(r->num_surfaces == 6);
@@ -615,28 +615,28 @@ static void test_refine(void)
         bool *split2 = calloc(r->num_patches, sizeof *split2);
         split2[7] = split2[8] = true;
         CHECK(r->patches[7].surface == r->patches[8].surface);
-        CHECK_OK(il_rad_mesh_refine(scene, r, split2, &r2, &err), &err);
+        CHECK_OK(il_patch_mesh_refine(scene, r, split2, &r2, &err), &err);
         if (r2) {
             CHECK(r2->num_patches == 27 + 6);
             CHECK(r2->num_vertices == r->num_vertices + 9);
             CHECK_REL(total_area(r2), 6.0, 1e-5);
             check_invariants(r2);
-            il_rad_mesh_release(r2);
+            il_patch_mesh_release(r2);
         }
         memset(split2, 0, r->num_patches * sizeof *split2);
         split2[4] = true;
-        CHECK_OK(il_rad_mesh_refine(scene, r, split2, &r2, &err), &err);
+        CHECK_OK(il_patch_mesh_refine(scene, r, split2, &r2, &err), &err);
         if (r2) {
             CHECK(r2->num_patches == 27 + 3);
             CHECK(r2->num_vertices == r->num_vertices + 4);
             check_invariants(r2);
-            il_rad_mesh_release(r2);
+            il_patch_mesh_release(r2);
         }
         free(split2);
-        il_rad_mesh_release(r);
+        il_patch_mesh_release(r);
     }
     free(split);
-    il_rad_mesh_release(m);
+    il_patch_mesh_release(m);
 
     /* Triangles split into 4 as well. */
     il_scene_release(scene);
@@ -653,19 +653,19 @@ static void test_refine(void)
              &err);
     CHECK_OK(il_scene_commit(scene, &err), &err);
     s = settings_of(10.0f, 0);
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         bool one = true;
         CHECK(m->num_patches == 1);
-        CHECK_OK(il_rad_mesh_refine(scene, m, &one, &r, &err), &err);
+        CHECK_OK(il_patch_mesh_refine(scene, m, &one, &r, &err), &err);
         if (r) {
             CHECK(r->num_patches == 4);
             CHECK(r->num_vertices == 6);
             CHECK_REL(total_area(r), 0.5, 1e-6);
             check_invariants(r);
-            il_rad_mesh_release(r);
+            il_patch_mesh_release(r);
         }
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -674,22 +674,22 @@ static void test_errors(void)
 {
     il_error err = {0};
     il_scene *scene = make_box(1.0f, false);
-    il_rad_mesh *m = NULL;
-    il_rad_settings s = settings_of(1e-4f, 0);
-    CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+    il_patch_mesh *m = NULL;
+    il_patch_sizing s = settings_of(1e-4f, 0);
+    CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
     CHECK(m == NULL);
     CHECK(strstr(err.message, "more than 4,000,000") != NULL);
     s = settings_of(1e-3f, 0); /* 6 walls of 1000^2 cells */
-    CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+    CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
     CHECK(strstr(err.message, "gives 6000000 patches") != NULL);
     s = settings_of(1.0f, 12); /* 6 * 4^12 */
-    CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+    CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
     s = settings_of(1.0f, 4000000000u);
-    CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+    CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
     const float bad[3] = {0.0f, -1.0f, NAN};
     for (int k = 0; k < 3; k++) {
         s = settings_of(bad[k], 0);
-        CHECK(il_rad_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
+        CHECK(il_patch_mesh_build(scene, &s, &m, &err) == IL_ERR_INVALID);
         CHECK(m == NULL);
     }
     il_scene_release(scene);
@@ -700,9 +700,9 @@ static void test_tracer(void)
 {
     il_error err = {0};
     il_scene *scene = make_box(1.0f, false);
-    il_rad_settings s = settings_of(0.1f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(0.1f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches == 600);
         for (int f = 0; f < 6; f++) {
@@ -715,7 +715,7 @@ static void test_tracer(void)
             CHECK(pi < m->num_patches);
             if (pi >= m->num_patches)
                 continue;
-            const il_rad_patch *p = &m->patches[pi];
+            const il_patch *p = &m->patches[pi];
             CHECK(m->surfaces[p->surface].mesh == (uint32_t)f);
             CHECK(m->tri_src_mesh[hit.prim] == (uint32_t)f);
             il_vec3 x = v3_fma(ray.org, dir, hit.t);
@@ -723,7 +723,7 @@ static void test_tracer(void)
             CHECK(v3_length(v3_sub(x, p->center)) < 0.0708f);
             CHECK(v3_dot(p->normal, in) > 0.999f);
         }
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }
@@ -780,9 +780,9 @@ static void test_real_scenes(void)
     il_scene *scene = NULL;
     CHECK_OK(il_scene_load("cornell", NULL, &scene, &err), &err);
     CHECK_OK(il_scene_commit(scene, &err), &err);
-    il_rad_settings s = settings_of(100.0f, 0);
-    il_rad_mesh *m = NULL;
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    il_patch_sizing s = settings_of(100.0f, 0);
+    il_patch_mesh *m = NULL;
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         /* 5 walls, 5 + 5 block faces, the light: 16 surfaces.  All are
          * planar quads except the red wall, whose published corners are
@@ -795,15 +795,15 @@ static void test_real_scenes(void)
         CHECK(quads == 15);
         CHECK_REL(total_area(m), diffuse_area(scene), 1e-5);
         check_invariants(m);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     s = settings_of(0.05f, 0);
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches > 500);
         CHECK_REL(total_area(m), diffuse_area(scene), 1e-5);
         check_invariants(m);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 
@@ -817,7 +817,7 @@ static void test_real_scenes(void)
      * in the file): meshed once.  The left wall is out of plane by 1.5 cm:
      * 2 triangles; everything else one quad per face. */
     s = settings_of(100.0f, 0);
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_surfaces == 16);
         CHECK(m->num_patches == 17);
@@ -826,15 +826,15 @@ static void test_real_scenes(void)
             quads += m->patches[i].num_corners == 4;
         CHECK(quads == 15);
         CHECK_REL(total_area(m), diffuse_area(scene), 1e-5);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     s = settings_of(0.1f, 0);
-    CHECK_OK(il_rad_mesh_build(scene, &s, &m, &err), &err);
+    CHECK_OK(il_patch_mesh_build(scene, &s, &m, &err), &err);
     if (m) {
         CHECK(m->num_patches > 100);
         CHECK_REL(total_area(m), diffuse_area(scene), 1e-5);
         check_invariants(m);
-        il_rad_mesh_release(m);
+        il_patch_mesh_release(m);
     }
     il_scene_release(scene);
 }

@@ -3,7 +3,7 @@
  * determinism) and the adaptive-split marking.
  *
  * The meshes here are built by hand (a grid of quad patches per surface, the
- * layout il_rad_mesh_build produces) so every vertex value is known. */
+ * layout il_patch_mesh_build produces) so every vertex value is known. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,9 +17,9 @@
 #define MAXP 256
 #define MAXT 512
 
-/* A hand-built il_rad_mesh with fixed capacity. */
+/* A hand-built il_patch_mesh with fixed capacity. */
 typedef struct tmesh {
-    il_rad_mesh m;
+    il_patch_mesh m;
 } tmesh;
 
 static void tmesh_init(tmesh *t)
@@ -28,8 +28,8 @@ static void tmesh_init(tmesh *t)
     /* One vertex of padding for Embree (see il_tracer_create_triangles). */
     t->m.positions = calloc(MAXV + 1, sizeof(il_vec3));
     t->m.vertex_surface = calloc(MAXV, sizeof(uint32_t));
-    t->m.patches = calloc(MAXP, sizeof(il_rad_patch));
-    t->m.surfaces = calloc(64, sizeof(il_rad_surface));
+    t->m.patches = calloc(MAXP, sizeof(il_patch));
+    t->m.surfaces = calloc(64, sizeof(il_patch_surface));
     t->m.tri_indices = calloc(3 * MAXT, sizeof(uint32_t));
     t->m.tri_patch = calloc(MAXT, sizeof(uint32_t));
     t->m.tri_src_mesh = calloc(MAXT, sizeof(uint32_t));
@@ -59,10 +59,10 @@ static uint32_t add_grid(il_scene *scene, tmesh *t, il_vec3 origin, il_vec3 U, i
                          uint32_t material, bool patched)
 {
     il_error err = {0};
-    il_rad_mesh *m = &t->m;
+    il_patch_mesh *m = &t->m;
     uint32_t v0 = m->num_vertices, first_patch = m->num_patches;
     uint32_t surface = m->num_surfaces++;
-    m->surfaces[surface] = (il_rad_surface){.mesh = scene->num_meshes, .material = material,
+    m->surfaces[surface] = (il_patch_surface){.mesh = scene->num_meshes, .material = material,
                                             .diffuse = patched};
     float pos[3 * 64];
     uint32_t idx[3 * 128];
@@ -84,10 +84,10 @@ static uint32_t add_grid(il_scene *scene, tmesh *t, il_vec3 origin, il_vec3 U, i
             uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 2, d = a + nx + 1;
             uint32_t quad[4] = {a, b, c, d};
             uint32_t tris[2][3] = {{a, b, c}, {a, c, d}};
-            uint32_t patch = IL_RAD_NO_PATCH;
+            uint32_t patch = IL_NO_PATCH;
             if (patched) {
                 patch = m->num_patches++;
-                il_rad_patch *p = &m->patches[patch];
+                il_patch *p = &m->patches[patch];
                 p->num_corners = 4;
                 p->center = v3s(0.0f);
                 for (int c4 = 0; c4 < 4; c4++) {
@@ -166,7 +166,7 @@ static void test_vertex_average(void)
         rad[p1 + i] = v3((float)(i + 1), 0.0f, 1.0f);
     }
     il_vec3 out[MAXV];
-    il_rad_vertex_radiance(&t.m, rad, out);
+    il_patch_vertex_radiance(&t.m, rad, out);
 
     /* Grid 3x3, vertex k = j*3 + i; patches 0:(0,0) 1:(1,0) 2:(0,1) 3:(1,1). */
     CHECK_NEAR(out[4].x, 2.5f, 1e-6);          /* centre: (1+2+3+4)/4 */
@@ -221,7 +221,7 @@ static il_image render(const il_scene *scene, const tmesh *t, const il_vec3 *vra
     il_film *film = NULL;
     il_image img = {0};
     CHECK_OK(il_film_create(w, h, &film, &err), &err);
-    CHECK_OK(il_rad_render_film(scene, &t->m, vrad, film, &rd, stats, &err), &err);
+    CHECK_OK(il_patch_render_film(scene, &t->m, vrad, film, &rd, stats, &err), &err);
     CHECK_OK(il_film_resolve(film, &img, &err), &err);
     il_film_release(film);
     return img;
@@ -481,15 +481,15 @@ static void test_progress_and_errors(void)
     int calls = 0;
     il_render_stats stats = {0};
     il_render_desc rd = {.spp = 5, .progress = stop_after_first, .progress_user = &calls};
-    CHECK_OK(il_rad_render_film(scene, &t.m, vrad, film, &rd, &stats, &err), &err);
+    CHECK_OK(il_patch_render_film(scene, &t.m, vrad, film, &rd, &stats, &err), &err);
     CHECK(calls == 1);
     CHECK(stats.spp == 1);
 
-    CHECK(il_rad_render_film(scene, &t.m, NULL, film, &rd, &stats, &err) == IL_ERR_INVALID);
+    CHECK(il_patch_render_film(scene, &t.m, NULL, film, &rd, &stats, &err) == IL_ERR_INVALID);
     CHECK(strstr(err.message, "radiosity render") != NULL);
     il_scene *raw = NULL;
     CHECK_OK(il_scene_create(&raw, &err), &err);
-    CHECK(il_rad_render_film(raw, &t.m, vrad, film, &rd, &stats, &err) == IL_ERR_INVALID);
+    CHECK(il_patch_render_film(raw, &t.m, vrad, film, &rd, &stats, &err) == IL_ERR_INVALID);
     CHECK(strstr(err.message, "not committed") != NULL);
     il_scene_release(raw);
     il_film_release(film);
@@ -498,7 +498,7 @@ static void test_progress_and_errors(void)
 }
 
 /* The same checks through the real mesher: a diffuse quad and a mirror,
- * meshed by il_rad_mesh_build with 2 subdivision levels. */
+ * meshed by il_patch_mesh_build with 2 subdivision levels. */
 static void test_real_mesh(void)
 {
     il_error err = {0};
@@ -523,9 +523,9 @@ static void test_real_mesh(void)
     CHECK_OK(il_scene_commit(scene, &err), &err);
     il_render_desc rd = {.spp = 4, .radiosity = &(il_radiosity_desc){.subdivisions = 2}};
     il_rad_settings settings;
-    il_rad_mesh *mesh = NULL;
+    il_patch_mesh *mesh = NULL;
     CHECK_OK(il_rad_settings_resolve(scene, &rd, &settings, &err), &err);
-    CHECK_OK(il_rad_mesh_build(scene, &settings, &mesh, &err), &err);
+    CHECK_OK(il_patch_mesh_build(scene, &(il_patch_sizing){settings.patch_size, settings.subdivisions}, &mesh, &err), &err);
     if (!mesh) {
         il_scene_release(scene);
         return;
@@ -535,7 +535,7 @@ static void test_real_mesh(void)
     il_vec3 *vrad = calloc(mesh->num_vertices, sizeof *vrad);
     for (uint32_t i = 0; i < mesh->num_patches; i++)
         prad[i] = v3(0.6f, 0.6f, 0.6f);
-    il_rad_vertex_radiance(mesh, prad, vrad);
+    il_patch_vertex_radiance(mesh, prad, vrad);
     uint32_t used = 0;
     for (uint32_t v = 0; v < mesh->num_vertices; v++) {
         if (mesh->surfaces[mesh->vertex_surface[v]].diffuse) {
@@ -550,7 +550,7 @@ static void test_real_mesh(void)
     il_film *film = NULL;
     il_image img = {0};
     CHECK_OK(il_film_create(W, H, &film, &err), &err);
-    CHECK_OK(il_rad_render_film(scene, mesh, vrad, film, &rd, NULL, &err), &err);
+    CHECK_OK(il_patch_render_film(scene, mesh, vrad, film, &rd, NULL, &err), &err);
     CHECK_OK(il_film_resolve(film, &img, &err), &err);
     il_vec3 c = pixel(&img, W / 2, H / 2);
     CHECK_NEAR(c.x, 0.6f * tint.x, 1e-6);
@@ -578,7 +578,7 @@ static void test_real_mesh(void)
     il_film_release(film);
     free(prad);
     free(vrad);
-    il_rad_mesh_release(mesh);
+    il_patch_mesh_release(mesh);
     il_scene_release(scene);
 }
 

@@ -3,7 +3,7 @@
  * A surface is a set of triangles of one scene mesh (so one material) that
  * are connected through shared edges (vertices matched by exact position
  * within the mesh, as OBJ/glTF files often duplicate vertices) and do not
- * fold by more than IL_RAD_CREASE_DEG across those edges.  Inside a surface,
+ * fold by more than IL_PATCH_CREASE_DEG across those edges.  Inside a surface,
  * two triangles that share an edge become one quad element when the four
  * points are coplanar and the quad is convex (greedy: each triangle tries its
  * longest edge first, which is the diagonal of a rectangle split in two);
@@ -14,15 +14,15 @@
 #include <string.h>
 
 #include "core/error.h"
-#include "methods/radiosity/rad_mesh_internal.h"
+#include "methods/patch_mesh_internal.h"
 
-#define IL_RAD_CREASE_DEG 30.0
+#define IL_PATCH_CREASE_DEG 30.0
 /* Coplanarity: the fourth point lies within this fraction of the quad's
  * longest diagonal of the first triangle's plane. */
-#define IL_RAD_PLANAR_TOL 1e-4
+#define IL_PATCH_PLANAR_TOL 1e-4
 /* Convexity: every corner turns by more than asin(this) (no near-straight
  * corners, which would make a triangle-shaped quad). */
-#define IL_RAD_CONVEX_SIN 1e-3
+#define IL_PATCH_CONVEX_SIN 1e-3
 #define NONE UINT32_MAX
 
 typedef struct edge_entry {
@@ -167,7 +167,7 @@ static bool quad_ok(const il_vec3 q[4])
     il_vec3 d = dsub(q[2], q[0]);
     double dist = fabs((d.x * n[0] + d.y * n[1] + d.z * n[2]) / nl);
     double size = fmax(dlen(d), dlen(dsub(q[3], q[1])));
-    if (!(dist <= IL_RAD_PLANAR_TOL * size))
+    if (!(dist <= IL_PATCH_PLANAR_TOL * size))
         return false;
     double nq[3];
     dcross(dsub(q[2], q[0]), dsub(q[3], q[1]), nq);
@@ -179,7 +179,7 @@ static bool quad_ok(const il_vec3 q[4])
         double t[3];
         dcross(a, c, t);
         double turn = (t[0] * nq[0] + t[1] * nq[1] + t[2] * nq[2]) / nql;
-        if (!(turn > IL_RAD_CONVEX_SIN * dlen(a) * dlen(c)))
+        if (!(turn > IL_PATCH_CONVEX_SIN * dlen(a) * dlen(c)))
             return false;
     }
     return true;
@@ -201,7 +201,7 @@ static void work_free(mesh_work *w)
 }
 
 /* Surfaces and elements of one diffuse mesh. */
-static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_rad_elements *out,
+static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_patch_elements *out,
                                il_error *err)
 {
     const il_mesh *m = &scene->meshes[mi];
@@ -272,7 +272,7 @@ static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_rad_elemen
     }
 
     /* Adjacency by sorting the edges: equal keys are one shared edge. */
-    const double cos_crease = cos(IL_RAD_CREASE_DEG * 3.14159265358979323846 / 180.0);
+    const double cos_crease = cos(IL_PATCH_CREASE_DEG * 3.14159265358979323846 / 180.0);
     qsort(w.edges, ne, sizeof *w.edges, cmp_edge);
     for (size_t i = 0; i < ne;) {
         size_t j = i + 1;
@@ -320,7 +320,7 @@ static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_rad_elemen
     for (uint32_t c = 0; c < ncomp; c++) {
         w.start[c + 1] += w.start[c];
         out->surfaces[out->num_surfaces++] =
-            (il_rad_surface){.mesh = mi, .material = m->material, .diffuse = true};
+            (il_patch_surface){.mesh = mi, .material = m->material, .diffuse = true};
     }
     for (uint32_t t = 0; t < T; t++)
         if (!w.paired[t])
@@ -344,7 +344,7 @@ static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_rad_elemen
                     by_len[a] = by_len[b];
                     by_len[b] = tmp;
                 }
-        il_rad_elem el = {.surface = first_surface + w.comp[t], .num_corners = 3,
+        il_patch_elem el = {.surface = first_surface + w.comp[t], .num_corners = 3,
                           .src = {t, t}};
         for (int k = 0; k < 3; k++) {
             el.id[k] = o[k];
@@ -394,7 +394,7 @@ static bool is_diffuse(const il_material *m)
     return m->type != IL_MATERIAL_MIRROR && m->type != IL_MATERIAL_DIELECTRIC;
 }
 
-il_status il_rad_elements_build(const il_scene *scene, il_rad_elements *out, il_error *err)
+il_status il_patch_elements_build(const il_scene *scene, il_patch_elements *out, il_error *err)
 {
     memset(out, 0, sizeof *out);
     size_t diffuse_tris = 0, raw_tris = 0;
@@ -410,7 +410,7 @@ il_status il_rad_elements_build(const il_scene *scene, il_rad_elements *out, il_
     out->surfaces = il_malloc((diffuse_tris + scene->num_meshes + 1) * sizeof *out->surfaces, err);
     out->raw = il_malloc((raw_tris + 1) * sizeof *out->raw, err);
     if (!out->elems || !out->surfaces || !out->raw) {
-        il_rad_elements_free(out);
+        il_patch_elements_free(out);
         return IL_ERR_MEMORY;
     }
     for (uint32_t mi = 0; mi < scene->num_meshes; mi++) {
@@ -420,23 +420,23 @@ il_status il_rad_elements_build(const il_scene *scene, il_rad_elements *out, il_
         if (is_diffuse(&scene->materials[m->material])) {
             il_status st = mesh_elements(scene, mi, out, err);
             if (st != IL_OK) {
-                il_rad_elements_free(out);
+                il_patch_elements_free(out);
                 return st;
             }
             continue;
         }
         uint32_t s = out->num_surfaces++;
-        out->surfaces[s] = (il_rad_surface){.mesh = mi, .material = m->material, .diffuse = false};
+        out->surfaces[s] = (il_patch_surface){.mesh = mi, .material = m->material, .diffuse = false};
         for (uint32_t t = 0; t < m->num_triangles; t++)
-            out->raw[out->num_raw++] = (il_rad_raw_tri){s, t};
+            out->raw[out->num_raw++] = (il_patch_raw_tri){s, t};
     }
-    il_rad_surface *shrunk = realloc(out->surfaces, (out->num_surfaces + 1) * sizeof *shrunk);
+    il_patch_surface *shrunk = realloc(out->surfaces, (out->num_surfaces + 1) * sizeof *shrunk);
     if (shrunk)
         out->surfaces = shrunk;
     return IL_OK;
 }
 
-void il_rad_elements_free(il_rad_elements *e)
+void il_patch_elements_free(il_patch_elements *e)
 {
     free(e->elems);
     free(e->surfaces);

@@ -24,13 +24,13 @@
 #include "core/sampler.h"
 #include "core/sampling.h"
 #include "methods/camera_pass.h"
-#include "methods/radiosity/rad.h"
+#include "methods/patch_mesh.h"
 #include "scene/bsdf.h"
 #include "scene/lights.h"
 
 typedef struct rr_job {
     const il_scene *scene;
-    const il_rad_mesh *mesh;
+    const il_patch_mesh *mesh;
     const il_vec3 *vrad;        /* per mesh vertex */
     uint32_t max_depth;
 } rr_job;
@@ -84,7 +84,7 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
 {
     const rr_job *job = method;
     const il_scene *s = job->scene;
-    const il_rad_mesh *mesh = job->mesh;
+    const il_patch_mesh *mesh = job->mesh;
     const il_tracer *tr = mesh->tracer;
     il_vec3 L = v3s(0.0f), beta = v3s(1.0f);
     il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
@@ -105,8 +105,8 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
         il_bsdf b;
         il_vec3 wi, weight;
 
-        if (patch != IL_RAD_NO_PATCH) {
-            const il_rad_patch *pa = &mesh->patches[patch];
+        if (patch != IL_NO_PATCH) {
+            const il_patch *pa = &mesh->patches[patch];
             if (v3_dot(pa->normal, wo) <= 0.0f)
                 break;  /* the back of a patch: black (see the top of the file) */
             const uint32_t *tri = mesh->tri_indices + 3 * (size_t)t;
@@ -173,7 +173,7 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
 /* stats: spp is set, rays and nonfinite_samples are added to (the solve may
  * have counted its own), radiosity.seconds_render is set; stats->seconds
  * (the whole method's time) is left to the caller. */
-il_status il_rad_render_film(const il_scene *scene, const il_rad_mesh *mesh,
+il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
                              const il_vec3 *vertex_radiance, il_film *film,
                              const il_render_desc *desc, il_render_stats *stats, il_error *err)
 {
