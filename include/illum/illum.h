@@ -269,7 +269,8 @@ void il_film_release(il_film *film);
 
 typedef enum il_method {
     IL_METHOD_PT = 0,        /* reference path tracer (docs/path-tracer.md) */
-    IL_METHOD_RADIOSITY      /* progressive-refinement radiosity (docs/radiosity.md) */
+    IL_METHOD_RADIOSITY,     /* progressive-refinement radiosity (docs/radiosity.md) */
+    IL_METHOD_HR             /* hierarchical radiosity (docs/hierarchical-radiosity.md) */
 } il_method;
 typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
 typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
@@ -349,6 +350,38 @@ typedef struct il_radiosity_stats {
     uint64_t peak_bytes;       /* the solver's own largest allocation total */
 } il_radiosity_stats;
 
+/* --------------------------------------------------- hierarchical radiosity */
+
+/* Hanrahan, Salzman & Aupperle 1991 as in SPLASH-2's radiosity program.  The
+ * epsilons are relative, so rescaling the scene or its lights changes
+ * nothing (docs/hierarchical-radiosity.md maps them to SPLASH-2's values). */
+typedef struct il_hr_desc {
+    float bf_eps;              /* refine a link while F * B * V / B_max exceeds this;
+                                  0 means 0.015 */
+    float area_eps;            /* ... and the larger element's area exceeds this
+                                  fraction of the scene's bounding-box diagonal
+                                  squared; 0 means 2000 / 1700^2 (SPLASH-2's room) */
+    float energy_eps;          /* stop when the relative change of total energy
+                                  falls below; 0 means 0.005 */
+    uint32_t vis_rays;         /* visibility rays per link; 0 means 16 */
+    uint32_t max_iterations;   /* 0 means 100 */
+} il_hr_desc;
+
+typedef struct il_hr_stats {
+    uint32_t patches;          /* input polygons (quadtree roots) */
+    uint64_t elements;         /* all quadtree nodes */
+    uint64_t leaves;
+    uint64_t links;
+    uint32_t iterations;
+    uint64_t visibility_rays;
+    double seconds_setup;      /* patches, initial links */
+    double seconds_refine;     /* refinement + visibility, all iterations */
+    double seconds_gather;     /* gather + push-pull, all iterations */
+    double seconds_average;    /* per-vertex averaging and output mesh */
+    double seconds_render;
+    uint64_t peak_bytes;       /* pools of elements, links and visibility */
+} il_hr_stats;
+
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
@@ -363,6 +396,7 @@ typedef struct il_render_desc {
     il_progress_fn progress;
     void *progress_user;
     const il_radiosity_desc *radiosity; /* IL_METHOD_RADIOSITY options; NULL: defaults */
+    const il_hr_desc *hr;    /* IL_METHOD_HR options; NULL: defaults */
 } il_render_desc;
 
 typedef struct il_render_stats {
@@ -371,6 +405,7 @@ typedef struct il_render_stats {
     double seconds;
     uint64_t nonfinite_samples; /* samples dropped because they were NaN or Inf */
     il_radiosity_stats radiosity; /* IL_METHOD_RADIOSITY only */
+    il_hr_stats hr;          /* IL_METHOD_HR only */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is
@@ -402,7 +437,7 @@ typedef struct il_bake_result {
     il_render_stats stats;
 } il_bake_result;
 
-/* Solves the scene with desc->method (IL_METHOD_RADIOSITY; other methods give
+/* Solves the scene with desc->method (IL_METHOD_RADIOSITY or IL_METHOD_HR; others give
  * IL_ERR_INVALID until they can bake) and returns per-vertex radiance. */
 il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_result **out,
                   il_error *err);
