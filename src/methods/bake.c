@@ -23,6 +23,8 @@ static const char *method_name(il_method m)
         return "pt";
     case IL_METHOD_RADIOSITY:
         return "radiosity";
+    case IL_METHOD_HR:
+        return "hr";
     }
     return NULL;
 }
