@@ -167,8 +167,9 @@ typedef struct il_scene_info {
 il_status il_scene_create(il_scene **out, il_error *err);
 
 /* Loads a file (any format assimp reads, or a .json scene file; see
- * docs/scene-format.md) or a built-in scene by name: "cornell", "atrium", and
- * the radiosity rooms "simple-room", "shadow-room", "box-room". */
+ * docs/scene-format.md) or a built-in scene by name: "cornell", "atrium", the
+ * radiosity rooms "simple-room", "shadow-room", "box-room", and the furnished
+ * "office" (docs/builtin-scenes.md). */
 il_status il_scene_load(const char *path_or_name, const il_load_desc *desc,
                         il_scene **out, il_error *err);
 

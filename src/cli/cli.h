@@ -4,6 +4,7 @@
 
 #include <signal.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include "illum/illum.h"
 
@@ -46,11 +47,32 @@ int cli_load_scene(const char *path, bool quiet, il_scene **out);
 /* Writes a JSON object, pretty-printed with a final newline, atomically. */
 bool cli_write_json(const char *path, struct cJSON *json);
 
+/* Method names and the pieces every method's own option set shares (cli_method.c). */
+bool cli_method_from_name(const char *name, il_method *out); /* "pt", "radiosity", "hr" */
+const char *cli_method_name(il_method method);
+
+/* Which options of one method's set the command line gave. */
+typedef struct cli_method_note {
+    bool given;
+    const char *first;               /* the first one given, for messages */
+} cli_method_note;
+
+/* When argv[*i] is one of names[0..n-1], returns that name and consumes its
+ * value into *value (NULL after a usage message when it is missing), noting
+ * the option in *note; returns NULL when argv[*i] is none of them. */
+const char *cli_method_option(int argc, char **argv, int *i, const char *const *names, size_t n,
+                              cli_method_note *note, const char **value);
+/* True when the command line has "--method METHOD" (for --help). */
+bool cli_help_wants_method(int argc, char **argv, const char *method);
+/* Prints "OPTION is a LABEL option; it needs --method METHOD (see 'illum
+ * COMMAND --method METHOD --help')" and returns IL_EXIT_USAGE. */
+int cli_method_mismatch(const char *command, const cli_method_note *note, const char *label,
+                        const char *method);
+
 /* The radiosity options (cli_radiosity.c), shared by render and bake. */
 typedef struct cli_radiosity_options {
     il_radiosity_desc desc;
-    bool given;                      /* any radiosity option on the command line */
-    const char *first;               /* the first one given, for messages */
+    cli_method_note note;            /* any radiosity option on the command line */
     bool draw, drawn;                /* progress line */
     double last_draw;                /* solve seconds when it was last drawn */
     const volatile sig_atomic_t *stop; /* set by Ctrl-C: ends the solve early */
@@ -60,8 +82,6 @@ extern const char cli_radiosity_help[];
 /* When argv[*i] is a radiosity option, consumes it (and its value), sets *rc
  * to IL_EXIT_OK or the exit status of a bad value, and returns true. */
 bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *o, int *rc);
-/* True when the command line has "--method radiosity" (for --help). */
-bool cli_help_wants_radiosity(int argc, char **argv);
 /* Installs desc.on_step: "radiosity: step N, unshot X%" on a terminal unless
  * quiet; the solve stops early once *stop is set. */
 void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
@@ -71,6 +91,21 @@ void cli_radiosity_end_progress(cli_radiosity_options *o);
 void cli_radiosity_stats_json(struct cJSON *parent, const il_radiosity_stats *stats);
 /* One line on stderr: patches, steps, unshot fraction, time per phase. */
 void cli_radiosity_summary(const il_radiosity_stats *stats);
+
+/* The hierarchical-radiosity options (cli_hr.c), shared by render and bake. */
+typedef struct cli_hr_options {
+    il_hr_desc desc;
+    cli_method_note note;            /* any hr option on the command line */
+} cli_hr_options;
+
+extern const char cli_hr_help[];
+/* As cli_radiosity_option, for --bf-eps, --area-eps, --energy-eps,
+ * --vis-rays and --max-iterations. */
+bool cli_hr_option(int argc, char **argv, int *i, cli_hr_options *o, int *rc);
+/* Adds the "hr" object of --stats (every il_hr_stats field) to `parent`. */
+void cli_hr_stats_json(struct cJSON *parent, const il_hr_stats *stats);
+/* One line on stderr: patches, elements, links, iterations, rays, time per phase. */
+void cli_hr_summary(const il_hr_stats *stats);
 
 int cmd_render(int argc, char **argv);
 int cmd_info(int argc, char **argv);

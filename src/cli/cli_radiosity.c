@@ -32,34 +32,22 @@ const char cli_radiosity_help[] =
     "                         differs from a neighbour's by more than this fraction\n"
     "                         and solve again (default: off)\n";
 
-/* Stores the option's name so a later check can say which one was given. */
-static void note(cli_radiosity_options *o, const char *name)
-{
-    o->given = true;
-    if (!o->first)
-        o->first = name;
-}
-
 bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *o, int *rc)
 {
-    const char *a = argv[*i];
     static const char *const names[] = {"--patch-size", "--subdiv",     "--form-factors",
                                         "--hemicube-res", "--ff-samples", "--solver",
                                         "--tolerance",  "--max-steps",  "--ff-cache-mb",
                                         "--adaptive"};
-    const char *name = NULL;
-    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
-        if (!strcmp(a, names[k]))
-            name = names[k];
+    const char *v = NULL;
+    const char *name =
+        cli_method_option(argc, argv, i, names, sizeof names / sizeof names[0], &o->note, &v);
     if (!name)
         return false;
     *rc = IL_EXIT_OK;
-    const char *v = cli_value(argc, argv, i);
     if (!v) {
         *rc = IL_EXIT_USAGE;
         return true;
     }
-    note(o, name);
     il_radiosity_desc *d = &o->desc;
     bool ok = true;
     double x;
@@ -107,14 +95,6 @@ bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *
     if (!ok)
         *rc = IL_EXIT_BAD_INPUT;
     return true;
-}
-
-bool cli_help_wants_radiosity(int argc, char **argv)
-{
-    for (int k = 1; k + 1 < argc; k++)
-        if (!strcmp(argv[k], "--method") && !strcmp(argv[k + 1], "radiosity"))
-            return true;
-    return false;
 }
 
 /* "radiosity: step N, unshot X%" redrawn in place on a terminal, at most

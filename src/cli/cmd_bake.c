@@ -1,5 +1,5 @@
 /* `illum bake SCENE -o OUT.ply|OUT.glb|OUT.gltf`: solve the scene with a
- * method that can bake (radiosity) and write the meshes with per-vertex
+ * method that can bake (radiosity, hr) and write the meshes with per-vertex
  * radiance (il_bake, il_bake_write; docs/radiosity.md, "Baking"). */
 #include <signal.h>
 #include <stdio.h>
@@ -15,13 +15,14 @@ static const char *help =
     "usage: illum bake SCENE -o OUT.ply|OUT.glb|OUT.gltf [options]\n"
     "\n"
     "Solves SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
-    "atrium, simple-room, shadow-room, box-room) and writes its meshes with the\n"
-    "outgoing radiance at every vertex: PLY with 8-bit sRGB colours and float\n"
+    "atrium, simple-room, shadow-room, box-room, office) and writes its meshes with\n"
+    "the outgoing radiance at every vertex: PLY with 8-bit sRGB colours and float\n"
     "properties radiance_r/g/b, or glTF 2.0 with COLOR_0 (display colours) and\n"
     "COLOR_1 (float radiance).\n"
     "\n"
     "  -o, --output FILE      the output, by extension: .ply .glb .gltf (required)\n"
-    "  --method radiosity     the method (radiosity, the default and only one so far)\n"
+    "  --method radiosity|hr  the method: progressive radiosity (the default) or\n"
+    "                         hierarchical radiosity\n"
     "  --exposure EV          8-bit/display colours: radiance * 2^EV (default 0)\n"
     "  --seed S               random seed (default 0)\n"
     "  --threads T            worker threads (default: all cores)\n"
@@ -37,6 +38,7 @@ typedef struct bake_options {
     il_bake_write_desc write;
     bool quiet;
     cli_radiosity_options rad;
+    cli_hr_options hr;
 } bake_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -65,10 +67,11 @@ static int parse_options(int argc, char **argv, bake_options *o)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = NULL;
-        int rad_rc;
-        if (cli_radiosity_option(argc, argv, &i, &o->rad, &rad_rc)) {
-            if (rad_rc != IL_EXIT_OK)
-                return rad_rc;
+        int opt_rc;
+        if (cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
+            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc)) {
+            if (opt_rc != IL_EXIT_OK)
+                return opt_rc;
             continue;
         }
 #define VALUE()                                   \
@@ -79,11 +82,13 @@ static int parse_options(int argc, char **argv, bake_options *o)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(help, stdout);
             fputs(cli_radiosity_help, stdout);
+            fputs(cli_hr_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
-            if (strcmp(v, "radiosity") != 0) {
-                cli_error("--method: '%s' cannot bake (available: radiosity)", v);
+            if (!cli_method_from_name(v, &o->desc.method) ||
+                (o->desc.method != IL_METHOD_RADIOSITY && o->desc.method != IL_METHOD_HR)) {
+                cli_error("--method: '%s' cannot bake (available: radiosity, hr)", v);
                 return IL_EXIT_BAD_INPUT;
             }
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
@@ -137,6 +142,10 @@ static int parse_options(int argc, char **argv, bake_options *o)
         cli_error("bake: no output given: -o OUT.ply, OUT.glb or OUT.gltf");
         return IL_EXIT_USAGE;
     }
+    if (o->rad.note.given && o->desc.method != IL_METHOD_RADIOSITY)
+        return cli_method_mismatch("bake", &o->rad.note, "radiosity", "radiosity");
+    if (o->hr.note.given && o->desc.method != IL_METHOD_HR)
+        return cli_method_mismatch("bake", &o->hr.note, "hierarchical radiosity", "hr");
     return IL_EXIT_OK;
 }
 
@@ -149,7 +158,7 @@ static bool write_stats(const bake_options *o, const il_bake_result *b, double w
     }
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "method", "radiosity");
+    cJSON_AddStringToObject(j, "method", cli_method_name(o->desc.method));
     cJSON_AddStringToObject(j, "output", o->output);
     cJSON_AddNumberToObject(j, "meshes", b->num_meshes);
     cJSON_AddNumberToObject(j, "vertices", (double)vertices);
@@ -159,7 +168,10 @@ static bool write_stats(const bake_options *o, const il_bake_result *b, double w
     cJSON_AddNumberToObject(j, "exposure", o->write.exposure);
     cJSON_AddNumberToObject(j, "total_seconds", wall);
     cJSON_AddBoolToObject(j, "interrupted", interrupted != 0);
-    cli_radiosity_stats_json(j, &b->stats.radiosity);
+    if (o->desc.method == IL_METHOD_HR)
+        cli_hr_stats_json(j, &b->stats.hr);
+    else
+        cli_radiosity_stats_json(j, &b->stats.radiosity);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;
@@ -181,6 +193,7 @@ int cmd_bake(int argc, char **argv)
 
     cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
     o.desc.radiosity = &o.rad.desc;
+    o.desc.hr = &o.hr.desc;
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old_sa);
@@ -198,7 +211,10 @@ int cmd_bake(int argc, char **argv)
         return cli_exit_for(st);
     }
     if (!o.quiet) {
-        cli_radiosity_summary(&bake->stats.radiosity);
+        if (o.desc.method == IL_METHOD_HR)
+            cli_hr_summary(&bake->stats.hr);
+        else
+            cli_radiosity_summary(&bake->stats.radiosity);
         fprintf(stderr, "illum: baked %u meshes -> %s\n", bake->num_meshes, o.output);
     }
     if (o.stats && !write_stats(&o, bake, now_seconds() - t0))

@@ -15,12 +15,14 @@ static const char *help =
     "usage: illum render SCENE [options]\n"
     "\n"
     "Renders SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
-    "atrium, simple-room, shadow-room, box-room) through its camera and writes the\n"
-    "image(s).\n"
+    "atrium, simple-room, shadow-room, box-room, office) through its camera and\n"
+    "writes the image(s).\n"
     "\n"
-    "  --method pt|radiosity  rendering method (pt: path tracing, the default;\n"
-    "                         radiosity: 'illum render --method radiosity --help'\n"
-    "                         lists its options)\n"
+    "  --method pt|radiosity|hr\n"
+    "                         rendering method (pt: path tracing, the default;\n"
+    "                         radiosity: progressive radiosity; hr: hierarchical\n"
+    "                         radiosity; 'illum render --method M --help' lists a\n"
+    "                         method's own options)\n"
     "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
     "  --time SECONDS         render passes until SECONDS have passed\n"
     "  --width W --height H   image size in pixels (default 512 x 512)\n"
@@ -60,6 +62,7 @@ typedef struct render_options {
     double fov;
     bool has_method;
     cli_radiosity_options rad;
+    cli_hr_options hr;
 } render_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -181,17 +184,18 @@ static int read_camera_file(render_options *o)
     return IL_EXIT_OK;
 }
 
-/* Radiosity options need the radiosity method.  Without --method a JSON
+/* A method's own options need that method.  Without --method a JSON
  * scene's "render" block may still choose it, so cmd_render checks again
  * (final) once the scene is loaded. */
 static int check_method_options(const render_options *o, bool final)
 {
-    if (!o->rad.given || o->desc.method == IL_METHOD_RADIOSITY || (!o->has_method && !final))
+    if (!o->has_method && !final)
         return IL_EXIT_OK;
-    cli_error("%s is a radiosity option; it needs --method radiosity (see 'illum render "
-              "--method radiosity --help')",
-              o->rad.first);
-    return IL_EXIT_USAGE;
+    if (o->rad.note.given && o->desc.method != IL_METHOD_RADIOSITY)
+        return cli_method_mismatch("render", &o->rad.note, "radiosity", "radiosity");
+    if (o->hr.note.given && o->desc.method != IL_METHOD_HR)
+        return cli_method_mismatch("render", &o->hr.note, "hierarchical radiosity", "hr");
+    return IL_EXIT_OK;
 }
 
 static int parse_options(int argc, char **argv, render_options *o)
@@ -199,10 +203,11 @@ static int parse_options(int argc, char **argv, render_options *o)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = NULL;
-        int rad_rc;
-        if (cli_radiosity_option(argc, argv, &i, &o->rad, &rad_rc)) {
-            if (rad_rc != IL_EXIT_OK)
-                return rad_rc;
+        int opt_rc;
+        if (cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
+            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc)) {
+            if (opt_rc != IL_EXIT_OK)
+                return opt_rc;
             continue;
         }
 #define VALUE()                                   \
@@ -212,17 +217,15 @@ static int parse_options(int argc, char **argv, render_options *o)
     } while (0)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(help, stdout);
-            if (cli_help_wants_radiosity(argc, argv))
+            if (cli_help_wants_method(argc, argv, "radiosity"))
                 fputs(cli_radiosity_help, stdout);
+            if (cli_help_wants_method(argc, argv, "hr"))
+                fputs(cli_hr_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
-            if (!strcmp(v, "pt"))
-                o->desc.method = IL_METHOD_PT;
-            else if (!strcmp(v, "radiosity"))
-                o->desc.method = IL_METHOD_RADIOSITY;
-            else {
-                cli_error("--method: unknown method '%s' (available: pt, radiosity)", v);
+            if (!cli_method_from_name(v, &o->desc.method)) {
+                cli_error("--method: unknown method '%s' (available: pt, radiosity, hr)", v);
                 return IL_EXIT_BAD_INPUT;
             }
             o->has_method = true;
@@ -358,13 +361,14 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     il_render_settings rs;
     if (!il_scene_get_render_settings(scene, &rs))
         return IL_EXIT_OK;
-    if (rs.method[0] && strcmp(rs.method, "pt") != 0 && strcmp(rs.method, "radiosity") != 0) {
-        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity)",
+    il_method method = IL_METHOD_PT;
+    if (rs.method[0] && !cli_method_from_name(rs.method, &method)) {
+        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr)",
                   o->scene, rs.method);
         return IL_EXIT_BAD_INPUT;
     }
     if (rs.method[0] && !o->has_method)
-        o->desc.method = strcmp(rs.method, "radiosity") == 0 ? IL_METHOD_RADIOSITY : IL_METHOD_PT;
+        o->desc.method = method;
     if (o->width == 0 && rs.width <= 16384)
         o->width = rs.width;
     if (o->height == 0 && rs.height <= 16384)
@@ -409,7 +413,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
     il_scene_get_info(scene, &in);
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "method", o->desc.method == IL_METHOD_RADIOSITY ? "radiosity" : "pt");
+    cJSON_AddStringToObject(j, "method", cli_method_name(o->desc.method));
     cJSON_AddNumberToObject(j, "width", o->width);
     cJSON_AddNumberToObject(j, "height", o->height);
     cJSON_AddNumberToObject(j, "spp", rs->spp);
@@ -430,6 +434,8 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
         cJSON_AddItemToArray(outs, cJSON_CreateString(o->outputs[i]));
     if (o->desc.method == IL_METHOD_RADIOSITY)
         cli_radiosity_stats_json(j, &rs->radiosity);
+    else if (o->desc.method == IL_METHOD_HR)
+        cli_hr_stats_json(j, &rs->hr);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;
@@ -486,6 +492,7 @@ int cmd_render(int argc, char **argv)
         cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
         o.desc.radiosity = &o.rad.desc;
     }
+    o.desc.hr = &o.hr.desc;
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old_sa);
@@ -517,6 +524,8 @@ int cmd_render(int argc, char **argv)
     if (!o.quiet) {
         if (o.desc.method == IL_METHOD_RADIOSITY)
             cli_radiosity_summary(&rs.radiosity);
+        else if (o.desc.method == IL_METHOD_HR)
+            cli_hr_summary(&rs.hr);
         fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
                 rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);

@@ -1,5 +1,5 @@
-/* il_bake: light written onto the geometry.  Radiosity solves the scene and
- * gives per-vertex radiance on its patch mesh; here the meshed triangles are
+/* il_bake: light written onto the geometry.  Radiosity or hierarchical
+ * radiosity solves the scene and gives per-vertex radiance on its patch mesh; here the meshed triangles are
  * grouped back by the scene mesh they came from (tri_src_mesh), one
  * il_bake_mesh per scene mesh, with their own compact vertex arrays.
  *
@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "illum/illum.h"
+#include "methods/hr/hr.h"
 #include "methods/radiosity/rad.h"
 #include "scene/scene.h"
 
@@ -211,15 +212,19 @@ il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_res
     const char *name = method_name(desc->method);
     if (!name)
         return il_fail(err, IL_ERR_INVALID, "bake: unknown method %d", (int)desc->method);
-    if (desc->method != IL_METHOD_RADIOSITY)
-        return il_fail(err, IL_ERR_INVALID, "bake: method %s cannot bake (radiosity can)", name);
+    if (desc->method != IL_METHOD_RADIOSITY && desc->method != IL_METHOD_HR)
+        return il_fail(err, IL_ERR_INVALID,
+                       "bake: method %s cannot bake (radiosity and hr can)", name);
 
     il_bake_result *res = il_calloc(1, sizeof *res, err);
     if (!res)
         return IL_ERR_MEMORY;
     il_patch_mesh *mesh = NULL;
     il_vec3 *vr = NULL;
-    il_status st = il_rad_run(scene, desc, &mesh, NULL, &vr, &res->stats, err);
+    /* Both diffuse methods end in (patch mesh, per-vertex radiance). */
+    il_status st = desc->method == IL_METHOD_HR
+                       ? il_hr_run(scene, desc, &mesh, &vr, &res->stats, err)
+                       : il_rad_run(scene, desc, &mesh, NULL, &vr, &res->stats, err);
     if (st == IL_OK)
         st = convert(scene, mesh, vr, res, err);
     if (mesh)

@@ -16,6 +16,7 @@ static const builtin_entry builtins[] = {
     {"simple-room", il_builtin_simple_room},
     {"shadow-room", il_builtin_shadow_room},
     {"box-room", il_builtin_box_room},
+    {"office", il_builtin_office},
 };
 
 static const builtin_entry *find_builtin(const char *name)
@@ -38,7 +39,7 @@ il_status il_builtin_load(il_scene *scene, const char *name, il_error *err)
     const builtin_entry *b = find_builtin(name);
     if (!b)
         return il_fail(err, IL_ERR_INVALID, "'%s' is not a built-in scene (cornell, atrium, simple-room, "
-                       "shadow-room, box-room)",
+                       "shadow-room, box-room, office)",
                        name ? name : "(null)");
     return b->build(scene, err);
 }

@@ -6,7 +6,7 @@
 #include "illum/illum.h"
 
 /* True when `name` is a built-in scene ("cornell", "atrium", "simple-room",
- * "shadow-room", "box-room"). */
+ * "shadow-room", "box-room", "office"). */
 bool il_builtin_exists(const char *name);
 /* Fills an empty scene with the built-in scene of that name. */
 il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
@@ -24,5 +24,9 @@ il_status il_builtin_atrium(il_scene *scene, il_error *err);
 il_status il_builtin_simple_room(il_scene *scene, il_error *err);
 il_status il_builtin_shadow_room(il_scene *scene, il_error *err);
 il_status il_builtin_box_room(il_scene *scene, il_error *err);
+/* The furnished office for hierarchical radiosity (builtin_office.c): an
+ * 8 x 3 x 6 m room of 537 rectangles with desks, chairs, shelves, books, a
+ * partition and six ceiling lamps. */
+il_status il_builtin_office(il_scene *scene, il_error *err);
 
 #endif

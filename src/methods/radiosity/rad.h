@@ -27,6 +27,7 @@
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
+#include "methods/ff_analytic.h"
 #include "methods/patch_mesh.h"
 #include "trace/trace.h"
 
@@ -96,12 +97,8 @@ void il_hemicube_row(const il_hemicube *hc, il_hemicube_buffers *b, uint32_t i, 
 void il_ff_ray_row(const il_patch_mesh *mesh, uint32_t samples, uint64_t seed, uint32_t i,
                    float *scratch, il_ff_row *out);
 
-/* Lambert's contour integral (Cohen & Wallace, "Radiosity and Realistic
- * Image Synthesis", 1993, eq. 4.14 / Baum et al. 1989): the unoccluded form
- * factor from a differential area at p with unit normal n to the polygon
- * (vertices counter-clockwise seen from its front).  Clips the polygon to
- * the half-space in front of p first. */
-double il_ff_point_polygon(il_vec3 p, il_vec3 n, const il_vec3 *poly, uint32_t count);
+/* il_ff_point_polygon (Lambert's contour integral) is shared by the diffuse
+ * methods: methods/ff_analytic.h. */
 
 /* The row cache with a memory cap: rows beyond the cap are not stored (and
  * are recomputed when needed again).  Thread-safe. */

@@ -1,4 +1,5 @@
-/* The unoccluded form factor from a differential area to a polygon by
+/* (Moved from radiosity/rad_ff_analytic.c to be shared with hierarchical
+ * radiosity.)  The unoccluded form factor from a differential area to a polygon by
  * Lambert's contour integral (Cohen & Wallace, "Radiosity and Realistic Image
  * Synthesis", 1993, eq. 4.14; Baum, Rushmeier & Winget, "Improving Radiosity
  * Solutions Through the Use of Analytically Determined Form-Factors",
@@ -11,8 +12,9 @@
  * polygon is first clipped to n.(x - p) >= 0 (Sutherland-Hodgman), streamed
  * edge by edge so no buffer is needed.  Double precision throughout. */
 #include <math.h>
+#include <stdbool.h>
 
-#include "methods/radiosity/rad.h"
+#include "methods/ff_analytic.h"
 
 typedef struct { double x, y, z; } dvec3;
 

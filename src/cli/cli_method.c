@@ -1,0 +1,68 @@
+/* What the method-specific option sets (cli_radiosity.c, cli_hr.c) share:
+ * method names, matching an option of a set and fetching its value, the
+ * --help check, and the usage error for an option of another method. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+static const struct {
+    const char *name;
+    il_method method;
+} methods[] = {
+    {"pt", IL_METHOD_PT},
+    {"radiosity", IL_METHOD_RADIOSITY},
+    {"hr", IL_METHOD_HR},
+};
+
+bool cli_method_from_name(const char *name, il_method *out)
+{
+    for (size_t k = 0; k < sizeof methods / sizeof methods[0]; k++)
+        if (!strcmp(name, methods[k].name)) {
+            *out = methods[k].method;
+            return true;
+        }
+    return false;
+}
+
+const char *cli_method_name(il_method method)
+{
+    for (size_t k = 0; k < sizeof methods / sizeof methods[0]; k++)
+        if (methods[k].method == method)
+            return methods[k].name;
+    return "unknown";
+}
+
+const char *cli_method_option(int argc, char **argv, int *i, const char *const *names, size_t n,
+                              cli_method_note *note, const char **value)
+{
+    const char *name = NULL;
+    for (size_t k = 0; k < n && !name; k++)
+        if (!strcmp(argv[*i], names[k]))
+            name = names[k];
+    if (!name)
+        return NULL;
+    *value = cli_value(argc, argv, i);
+    if (*value) {
+        note->given = true;
+        if (!note->first)
+            note->first = name;
+    }
+    return name;
+}
+
+bool cli_help_wants_method(int argc, char **argv, const char *method)
+{
+    for (int k = 1; k + 1 < argc; k++)
+        if (!strcmp(argv[k], "--method") && !strcmp(argv[k + 1], method))
+            return true;
+    return false;
+}
+
+int cli_method_mismatch(const char *command, const cli_method_note *note, const char *label,
+                        const char *method)
+{
+    cli_error("%s is a %s option; it needs --method %s (see 'illum %s --method %s --help')",
+              note->first, label, method, command, method);
+    return IL_EXIT_USAGE;
+}

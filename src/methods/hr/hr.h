@@ -1,0 +1,186 @@
+/* Hierarchical radiosity (`--method hr`): Hanrahan, Salzman & Aupperle,
+ * "A Rapid Hierarchical Radiosity Algorithm", SIGGRAPH 1991, as in the
+ * SPLASH-2 radiosity program.  Internals shared by the files of this folder
+ * and the tests; see docs/hierarchical-radiosity.md.
+ *
+ * Pipeline (hr.c):
+ *   scene -> il_patch_mesh_build with one patch per input polygon (the
+ *            shared mesher, methods/patch_mesh.c): the quadtree roots
+ *         -> hr_solve (hr_solve.c): initial links between facing roots
+ *            (hr_link.c: form factor + visibility), then per iteration
+ *            BF refinement (hr_refine.c), gather and push-pull
+ *         -> hr_output_mesh (hr_output.c): the leaves as an il_patch_mesh by
+ *            repeated il_patch_mesh_refine passes, their radiance per patch
+ *         -> il_patch_vertex_radiance, il_patch_render_film or the bake.
+ *
+ * Quantities: radiance, as in radiosity (B = pi L for a Lambertian surface;
+ * the equation B = E + rho sum F B holds unchanged for L).
+ *
+ * Determinism: every element has an id that is a pure function of its root
+ * patch and its quadtree path; all random numbers are keyed by ids; an
+ * element's children are a pure function of the element (created by
+ * whichever thread gets there first, published with a compare-and-swap);
+ * each receiver root's links are refined and gathered by exactly one task in
+ * a fixed order.  So elements, links and radiances do not depend on the
+ * thread count or timing. */
+#ifndef IL_METHODS_HR_HR_H
+#define IL_METHODS_HR_HR_H
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include "core/vec.h"
+#include "illum/illum.h"
+#include "methods/patch_mesh.h"
+#include "scene/scene.h"
+
+/* Most quadtree levels below a root (the area epsilon stops far earlier). */
+#define IL_HR_MAX_LEVEL 24
+#define IL_HR_MAX_VIS_RAYS 4096u
+#define IL_HR_MAX_ITERATIONS 100000u
+
+/* ------------------------------------------------------------- settings */
+
+typedef struct il_hr_settings {
+    float bf_eps;
+    float area_eps;            /* relative to the scene diagonal squared */
+    float energy_eps;
+    uint32_t vis_rays;
+    uint32_t max_iterations;
+    uint64_t seed;
+    int threads;               /* > 0, resolved */
+} il_hr_settings;
+
+/* Resolves defaults and checks ranges (clear messages, IL_ERR_INVALID). */
+il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out, il_error *err);
+
+/* ------------------------------------------------------- elements, links */
+
+typedef struct il_hr_elem il_hr_elem;
+
+/* A link: the receiver (the element whose list holds it) gathers from `src`. */
+typedef struct il_hr_link {
+    il_hr_elem *src;
+    float ff;                  /* F_rs: form factor from the receiver to src */
+    float err_ff;              /* the refinement oracle's form-factor bound */
+    float vis;                 /* visible fraction in [0, 1] */
+    struct il_hr_link *next;
+} il_hr_link;
+
+struct il_hr_elem {
+    il_vec3 corners[4];        /* counter-clockwise from the front */
+    il_vec3 center, normal;
+    float area;
+    uint32_t num_corners;      /* 3 or 4 */
+    uint32_t root;             /* the patch (quadtree root) it lies in */
+    uint32_t level;            /* 0 for a root */
+    uint64_t id;               /* pure function of root and quadtree path */
+    il_vec3 rho;               /* the root patch's reflectance */
+    il_vec3 emit;              /* Le + rho/pi * direct irradiance (delta lights, sky) */
+    il_vec3 radiance;          /* B: outgoing radiance (leaves), area mean (inner) */
+    il_vec3 gathered;          /* H: sum over own links of F V B_src (not times rho) */
+    il_vec3 incoming;          /* leaves: H pushed down from all ancestors and own */
+    il_hr_link *links, *links_tail; /* as receiver; touched by the root's task only */
+    uint32_t num_links;
+    il_hr_elem *parent;
+    _Atomic(il_hr_elem *) children; /* NULL or 4 elements, published by CAS */
+};
+
+/* Per-thread chunked arenas of elements and links: no malloc in the hot
+ * loop but one per chunk, no lock; a link replaced by refinement goes to
+ * the freeing thread's free list. */
+typedef struct il_hr_chunk il_hr_chunk;
+typedef struct il_hr_pool {
+    il_hr_chunk *elem_chunks, *link_chunks;
+    size_t elem_used, elem_cap;    /* in the newest element chunk */
+    size_t link_used, link_cap;
+    il_hr_link *free_links;
+    uint64_t bytes;
+    uint64_t elements;             /* counters (summed over threads: deterministic totals) */
+    uint64_t links_made;
+    uint64_t vis_rays;
+    bool failed;                   /* out of memory */
+    char pad[64];
+} il_hr_pool;
+
+void il_hr_pool_init(il_hr_pool *pool);
+void il_hr_pool_free(il_hr_pool *pool);
+/* Four contiguous elements, or NULL (pool->failed set). */
+il_hr_elem *il_hr_pool_elems4(il_hr_pool *pool);
+/* Gives back the block just taken by il_hr_pool_elems4 (a lost CAS). */
+void il_hr_pool_unget4(il_hr_pool *pool);
+il_hr_link *il_hr_pool_link(il_hr_pool *pool);
+void il_hr_pool_put_link(il_hr_pool *pool, il_hr_link *link);
+
+/* ---------------------------------------------------------- the solver */
+
+typedef struct il_hr_solver {
+    const il_scene *scene;
+    const il_patch_mesh *mesh;      /* one patch per input polygon */
+    il_hr_settings set;
+    il_hr_elem *roots;              /* one per mesh patch */
+    uint32_t num_roots;
+    il_hr_pool *pools;              /* one per thread */
+    float diag;                     /* scene bounding-box diagonal */
+    float area_min;                 /* area_eps * diag^2 */
+    float b_max;                    /* largest emitted luminance (refinement scale) */
+    float plane_eps;                /* distance below which a point is on a plane */
+    bool delta_lights, sky;         /* direct light to add to the leaves' emission */
+    uint32_t *order;                /* roots by decreasing work (scheduling only) */
+    il_hr_stats stats;
+} il_hr_solver;
+
+/* Roots from the mesh, initial links, iterations (refine, gather, push-pull)
+ * until the energy converges.  On failure the solver is freed. */
+il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il_hr_settings *set,
+                      il_hr_solver *solver, il_error *err);
+void il_hr_solver_free(il_hr_solver *solver);
+
+/* The children of e (created when missing: race-free, the same whoever
+ * creates them); NULL only when out of memory. */
+il_hr_elem *il_hr_children(const il_hr_solver *s, il_hr_elem *e, il_hr_pool *pool);
+static inline il_hr_elem *il_hr_children_get(const il_hr_elem *e)
+{
+    return atomic_load_explicit(&((il_hr_elem *)e)->children, memory_order_acquire);
+}
+/* Fills a root element from mesh patch i. */
+void il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out);
+
+/* A new link (r gathers from src) with its form factor and visibility;
+ * NULL when out of memory. */
+il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
+                            il_hr_elem *src);
+/* Whether a and b face each other: each has a point strictly in front of
+ * the other's plane. */
+bool il_hr_facing(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *b);
+
+/* BF refinement of every link received by root r's tree (one task). */
+void il_hr_refine_root(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *root);
+/* Gather (H = sum F V B) over root r's tree, then push-pull it: leaves get
+ * radiance = emit + rho * (H pushed down), inner elements the area mean. */
+void il_hr_gather_root(il_hr_elem *root);
+void il_hr_push_pull_root(il_hr_elem *root);
+
+/* --------------------------------------------------------------- output */
+
+/* The leaves as a patch mesh (il_patch_mesh_refine passes on solver->mesh,
+ * splitting where the quadtree did) and each of its patches' radiance. */
+il_status il_hr_output_mesh(const il_hr_solver *s, il_patch_mesh **mesh_out,
+                            il_vec3 **patch_radiance_out, il_error *err);
+
+/* The quadtree roots: the scene meshed with one patch per input polygon
+ * (quads stay quads). */
+il_status il_hr_root_mesh(const il_scene *scene, il_patch_mesh **out, il_error *err);
+
+/* The whole method: settings, roots, solve, output mesh, per-vertex
+ * radiance.  The caller owns *mesh_out and *vertex_radiance_out (free());
+ * stats->hr is filled. */
+il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
+                    il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err);
+
+/* The il_render entry point for IL_METHOD_HR. */
+il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                       il_render_stats *stats, il_error *err);
+
+#endif

@@ -1,0 +1,123 @@
+/* BF refinement, gather and push-pull over one root's quadtree (hr.h).
+ *
+ * Refinement (Hanrahan, Salzman & Aupperle 1991, section 4; SPLASH-2's
+ * "BF refinement"): a link r <- s is split while
+ *     err_ff * lum(B_s) * V / B_max > bf_eps        (B_max: the largest
+ *                                                    emitted luminance)
+ * and the larger element's area exceeds area_eps * diag^2.  The larger of
+ * the two is split: a receiver-side split replaces the link by links from
+ * each child of r (that faces s) to s, a source-side split by links from r
+ * to each child of s (that faces r); the new links are refined in turn.
+ * A fully occluded link (V = 0) is never split.
+ *
+ * Only the task of r's root touches r's link list, so the order of every
+ * list is fixed; children are shared through il_hr_children (race-free). */
+#include "methods/hr/hr.h"
+
+static void append(il_hr_elem *r, il_hr_link *l)
+{
+    l->next = NULL;
+    if (r->links_tail)
+        r->links_tail->next = l;
+    else
+        r->links = l;
+    r->links_tail = l;
+    r->num_links++;
+}
+
+static bool wants_split(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l)
+{
+    if (!(l->vis > 0.0f))
+        return false;
+    float bf = l->err_ff * il_luminance(l->src->radiance) * l->vis;
+    if (!(bf > s->set.bf_eps * s->b_max))
+        return false;
+    const il_hr_elem *big = r->area >= l->src->area ? r : l->src;
+    return big->area > s->area_min && big->level < IL_HR_MAX_LEVEL;
+}
+
+static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, il_hr_link *l)
+{
+    if (!wants_split(s, r, l) || pool->failed) {
+        append(r, l);
+        return;
+    }
+    il_hr_elem *src = l->src;
+    bool split_receiver = r->area >= src->area;
+    il_hr_elem *kids = il_hr_children(s, split_receiver ? r : src, pool);
+    if (!kids) {
+        append(r, l);
+        return;
+    }
+    il_hr_pool_put_link(pool, l);
+    for (uint32_t k = 0; k < 4; k++) {
+        il_hr_elem *rr = split_receiver ? &kids[k] : r, *ss = split_receiver ? src : &kids[k];
+        if (!il_hr_facing(s, rr, ss))
+            continue;
+        il_hr_link *nl = il_hr_link_make(s, pool, rr, ss);
+        if (!nl)
+            return;
+        refine_link(s, pool, rr, nl);
+    }
+}
+
+void il_hr_refine_root(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *e)
+{
+    il_hr_link *l = e->links;
+    e->links = e->links_tail = NULL;
+    e->num_links = 0;
+    while (l) {
+        il_hr_link *next = l->next;
+        refine_link(s, pool, e, l);
+        l = next;
+    }
+    /* Children another task made meanwhile (source-side) have no links:
+     * visiting them or not changes nothing. */
+    il_hr_elem *kids = il_hr_children_get(e);
+    if (kids)
+        for (uint32_t k = 0; k < 4; k++)
+            il_hr_refine_root(s, pool, &kids[k]);
+}
+
+void il_hr_gather_root(il_hr_elem *e)
+{
+    float h[3] = {0.0f, 0.0f, 0.0f};
+    for (const il_hr_link *l = e->links; l; l = l->next) {
+        float w = l->ff * l->vis;
+        h[0] += w * l->src->radiance.x;
+        h[1] += w * l->src->radiance.y;
+        h[2] += w * l->src->radiance.z;
+    }
+    e->gathered = v3(h[0], h[1], h[2]);
+    il_hr_elem *kids = il_hr_children_get(e);
+    if (kids)
+        for (uint32_t k = 0; k < 4; k++)
+            il_hr_gather_root(&kids[k]);
+}
+
+/* Push (Hanrahan et al. 1991, section 4.3): what an element gathered
+ * reaches all its descendants; pull: an inner element's radiance is the
+ * area-weighted mean of its children's. */
+static void push_pull(il_hr_elem *e, il_vec3 down)
+{
+    il_vec3 in = v3_add(down, e->gathered);
+    il_hr_elem *kids = il_hr_children_get(e);
+    if (!kids) {
+        e->incoming = in;
+        e->radiance = v3_add(e->emit, v3_mul(e->rho, in));
+        return;
+    }
+    il_vec3 b = v3s(0.0f), h = v3s(0.0f);
+    float area = 0.0f;
+    for (uint32_t k = 0; k < 4; k++) {
+        push_pull(&kids[k], in);
+        b = v3_fma(b, kids[k].radiance, kids[k].area);
+        h = v3_fma(h, kids[k].incoming, kids[k].area);
+        area += kids[k].area;
+    }
+    float inv = area > 0.0f ? 1.0f / area : 0.0f;
+    e->radiance = v3_scale(b, inv);
+    e->incoming = v3_scale(h, inv);
+}
+
+void il_hr_push_pull_root(il_hr_elem *root) { push_pull(root, v3s(0.0f)); }

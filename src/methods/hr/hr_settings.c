@@ -1,0 +1,58 @@
+/* il_hr_desc -> il_hr_settings: defaults and range checks.
+ *
+ * The epsilons are relative (docs/hierarchical-radiosity.md):
+ *   bf_eps:    SPLASH-2 refines while F * B > BFepsilon with B in absolute
+ *              units; we divide B by the largest emitted radiance B_max, so
+ *              the lights' power does not matter (default 0.015, SPLASH-2's
+ *              value for its unit-power lights);
+ *   area_eps:  SPLASH-2's minimum area 2000 in a room about 1700 units wide
+ *              becomes a fraction of the scene's bounding-box diagonal
+ *              squared, 2000 / 1700^2, so the scene's units do not matter;
+ *   energy_eps: relative change of the total energy, as SPLASH-2. */
+#include <math.h>
+#include <omp.h>
+
+#include "core/error.h"
+#include "methods/hr/hr.h"
+
+static il_status check_eps(const char *name, float v, float max, il_error *err)
+{
+    if (!isfinite(v) || v < 0.0f || v > max)
+        return il_fail(err, IL_ERR_INVALID,
+                       "hr: %s %g is out of range (0 to %g; 0 means the default)", name, (double)v,
+                       (double)max);
+    return IL_OK;
+}
+
+il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out, il_error *err)
+{
+    static const il_hr_desc none = {0};
+    const il_hr_desc *d = desc->hr ? desc->hr : &none;
+    il_status st;
+    if ((st = check_eps("bf-eps", d->bf_eps, 1.0f, err)) != IL_OK ||
+        (st = check_eps("area-eps", d->area_eps, 1.0f, err)) != IL_OK ||
+        (st = check_eps("energy-eps", d->energy_eps, 1.0f, err)) != IL_OK)
+        return st;
+    if (d->vis_rays > IL_HR_MAX_VIS_RAYS)
+        return il_fail(err, IL_ERR_INVALID,
+                       "hr: vis-rays %u is out of range (1 to %u; 0 means the default 16)",
+                       d->vis_rays, IL_HR_MAX_VIS_RAYS);
+    if (d->max_iterations > IL_HR_MAX_ITERATIONS)
+        return il_fail(err, IL_ERR_INVALID,
+                       "hr: max-iterations %u is out of range (1 to %u; 0 means the default 100)",
+                       d->max_iterations, IL_HR_MAX_ITERATIONS);
+    if (desc->threads < 0 || desc->threads > 4096)
+        return il_fail(err, IL_ERR_INVALID,
+                       "hr: threads %d is out of range (1 to 4096; 0 means all cores)",
+                       desc->threads);
+    out->bf_eps = d->bf_eps > 0.0f ? d->bf_eps : 0.015f;
+    out->area_eps = d->area_eps > 0.0f ? d->area_eps : 2000.0f / (1700.0f * 1700.0f);
+    out->energy_eps = d->energy_eps > 0.0f ? d->energy_eps : 0.005f;
+    out->vis_rays = d->vis_rays > 0 ? d->vis_rays : 16u;
+    out->max_iterations = d->max_iterations > 0 ? d->max_iterations : 100u;
+    out->seed = desc->seed;
+    out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+    if (out->threads < 1)
+        out->threads = 1;
+    return IL_OK;
+}

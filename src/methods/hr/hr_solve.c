@@ -1,0 +1,215 @@
+/* The hierarchical radiosity solve (hr.h): roots, initial links, then
+ * iterations of refinement, gather and push-pull until the relative change
+ * of the reflected energy sum(A lum(B - Le)) falls below energy_eps
+ * (SPLASH-2's test on the total energy, less the constant emission).  Gathering is Jacobi-style: every element gathers from
+ * the radiances of the previous push-pull, so the order of tasks does not
+ * matter.
+ *
+ * Parallelism: OpenMP parallel loops over receiver roots with dynamic
+ * scheduling (work stealing by the runtime), biggest trees first; each root
+ * is one task for initial links, refinement (with its visibility rays) and
+ * gather/push-pull.  No lock: per-thread pools, children published by CAS,
+ * link lists owned by their root's task. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "methods/hr/hr.h"
+#include "methods/patch_direct.h"
+
+static void count_tree(const il_hr_elem *e, uint64_t *elems, uint64_t *leaves, uint64_t *links)
+{
+    (*elems)++;
+    *links += e->num_links;
+    const il_hr_elem *kids = il_hr_children_get(e);
+    if (!kids) {
+        (*leaves)++;
+        return;
+    }
+    for (uint32_t k = 0; k < 4; k++)
+        count_tree(&kids[k], elems, leaves, links);
+}
+
+/* The reflected energy sum(A lum(rho H)) (H area-averaged by the pull):
+ * the total energy less the emission, which is constant and, when a small
+ * bright lamp dominates the total, would hide the change of the indirect
+ * light and stop the iteration too early. */
+static double total_energy(const il_hr_solver *s)
+{
+    double e = 0.0;
+    for (uint32_t i = 0; i < s->num_roots; i++) {
+        const il_hr_elem *r = &s->roots[i];
+        e += (double)r->area * il_luminance(v3_mul(r->rho, r->incoming));
+    }
+    return e;
+}
+
+static bool pools_failed(const il_hr_solver *s)
+{
+    for (int t = 0; t < s->set.threads; t++)
+        if (s->pools[t].failed)
+            return true;
+    return false;
+}
+
+/* Scheduling order: roots with the most links first (only speed depends on it). */
+typedef struct root_work { uint64_t links; uint32_t root; } root_work;
+
+static int by_work(const void *a, const void *b)
+{
+    const root_work *x = a, *y = b;
+    if (x->links != y->links)
+        return x->links > y->links ? -1 : 1;
+    return x->root < y->root ? -1 : (x->root > y->root);
+}
+
+static il_status reorder(il_hr_solver *s, il_error *err)
+{
+    root_work *w = il_malloc((size_t)s->num_roots * sizeof *w, err);
+    if (!w)
+        return IL_ERR_MEMORY;
+    for (uint32_t i = 0; i < s->num_roots; i++) {
+        uint64_t ne = 0, nl = 0, links = 0;
+        count_tree(&s->roots[i], &ne, &nl, &links);
+        w[i] = (root_work){links, i};
+    }
+    qsort(w, s->num_roots, sizeof *w, by_work);
+    for (uint32_t i = 0; i < s->num_roots; i++)
+        s->order[i] = w[i].root;
+    free(w);
+    return IL_OK;
+}
+
+void il_hr_solver_free(il_hr_solver *s)
+{
+    if (!s)
+        return;
+    if (s->pools)
+        for (int t = 0; t < s->set.threads; t++)
+            il_hr_pool_free(&s->pools[t]);
+    free(s->pools);
+    free(s->roots);
+    free(s->order);
+    memset(s, 0, sizeof *s);
+}
+
+static il_status setup(il_hr_solver *s, il_error *err)
+{
+    uint32_t n = s->num_roots;
+    int nt = s->set.threads;
+    s->roots = il_malloc((size_t)(n ? n : 1u) * sizeof *s->roots, err);
+    s->order = il_malloc((size_t)(n ? n : 1u) * sizeof *s->order, err);
+    s->pools = il_calloc((size_t)nt, sizeof *s->pools, err);
+    if (!s->roots || !s->order || !s->pools)
+        return IL_ERR_MEMORY;
+    for (int t = 0; t < nt; t++)
+        il_hr_pool_init(&s->pools[t]);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nt)
+    for (uint32_t i = 0; i < n; i++)
+        il_hr_elem_root(s, i, &s->roots[i]);
+    s->b_max = 0.0f;
+    for (uint32_t i = 0; i < n; i++) {
+        s->order[i] = i;
+        s->b_max = il_maxf(s->b_max, il_luminance(s->roots[i].emit));
+    }
+    /* Initial links: every pair of roots that face each other (a receiver
+     * that reflects nothing needs none). */
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+    for (uint32_t i = 0; i < n; i++) {
+        il_hr_pool *pool = &s->pools[omp_get_thread_num()];
+        il_hr_elem *r = &s->roots[i];
+        if (v3_is_zero(r->rho) || !(s->b_max > 0.0f))
+            continue;
+        for (uint32_t j = 0; j < n && !pool->failed; j++) {
+            if (j == i || !il_hr_facing(s, r, &s->roots[j]))
+                continue;
+            il_hr_link *l = il_hr_link_make(s, pool, r, &s->roots[j]);
+            if (!l)
+                break;
+            if (r->links_tail)
+                r->links_tail->next = l;
+            else
+                r->links = l;
+            r->links_tail = l;
+            r->num_links++;
+        }
+    }
+    if (pools_failed(s))
+        return il_fail(err, IL_ERR_MEMORY, "hr: out of memory for the initial links");
+    return reorder(s, err);
+}
+
+il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il_hr_settings *set,
+                      il_hr_solver *s, il_error *err)
+{
+    memset(s, 0, sizeof *s);
+    s->scene = scene;
+    s->mesh = mesh;
+    s->set = *set;
+    s->num_roots = mesh->num_patches;
+    il_vec3 ext = v3_sub(scene->bounds_max, scene->bounds_min);
+    s->diag = v3_length(ext);
+    s->area_min = set->area_eps * s->diag * s->diag;
+    s->plane_eps = 1e-5f * s->diag;
+    il_patch_direct_kinds(scene, &s->delta_lights, &s->sky);
+    il_hr_stats *st = &s->stats;
+    st->patches = s->num_roots;
+
+    double t0 = omp_get_wtime();
+    il_status status = setup(s, err);
+    st->seconds_setup = omp_get_wtime() - t0;
+    if (status != IL_OK) {
+        il_hr_solver_free(s);
+        return status;
+    }
+    int nt = set->threads;
+    uint32_t n = s->num_roots;
+    double prev = total_energy(s);
+    for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f; it++) {
+        double t1 = omp_get_wtime();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+        for (uint32_t i = 0; i < n; i++)
+            il_hr_refine_root(s, &s->pools[omp_get_thread_num()], &s->roots[s->order[i]]);
+        double t2 = omp_get_wtime();
+        st->seconds_refine += t2 - t1;
+        if (pools_failed(s)) {
+            il_hr_solver_free(s);
+            return il_fail(err, IL_ERR_MEMORY, "hr: out of memory while refining links");
+        }
+#pragma omp parallel num_threads(nt)
+        {
+#pragma omp for schedule(dynamic, 1)
+            for (uint32_t i = 0; i < n; i++)
+                il_hr_gather_root(&s->roots[s->order[i]]);
+#pragma omp for schedule(dynamic, 1)
+            for (uint32_t i = 0; i < n; i++)
+                il_hr_push_pull_root(&s->roots[s->order[i]]);
+        }
+        st->seconds_gather += omp_get_wtime() - t2;
+        st->iterations = it + 1;
+        double energy = total_energy(s);
+        bool done = it > 0 && fabs(energy - prev) <= set->energy_eps * fabs(energy);
+        prev = energy;
+        if (done)
+            break;
+        if (reorder(s, err) != IL_OK) {
+            il_hr_solver_free(s);
+            return IL_ERR_MEMORY;
+        }
+    }
+
+    uint64_t elems = 0, leaves = 0, links = 0;
+    for (uint32_t i = 0; i < n; i++)
+        count_tree(&s->roots[i], &elems, &leaves, &links);
+    st->elements = elems;
+    st->leaves = leaves;
+    st->links = links;
+    st->peak_bytes = (uint64_t)n * (sizeof *s->roots + sizeof *s->order);
+    for (int t = 0; t < nt; t++) {
+        st->visibility_rays += s->pools[t].vis_rays;
+        st->peak_bytes += s->pools[t].bytes;
+    }
+    return IL_OK;
+}

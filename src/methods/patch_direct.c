@@ -1,0 +1,159 @@
+/* Direct light on a patch from the lights that are not patches: point, spot
+ * and directional lights and the sky (shared by radiosity and hierarchical
+ * radiosity; moved here from radiosity/rad_direct.c).
+ *
+ * For a Lambertian patch with reflectance rho under irradiance E the
+ * reflected radiance is rho E / pi (Cohen & Wallace 1993, eq. 2.27 with
+ * f_r = rho/pi); E is the mean over the patch by a 4 x 4 midpoint rule (delta
+ * lights) and cosine rays with random numbers keyed by (seed, stream) (sky).
+ *
+ * Irradiance at p with unit normal n (conventions of src/scene/lights.c,
+ * pbrt-v4 chapter 12):
+ *   point/spot:   E = I * profile * cos(theta) / d^2, profile for a spot
+ *                 cos^n(angle to its axis), zero beyond the cut-off;
+ *   directional:  E = E_light * cos(theta);
+ *   sky:          E = int L(w) cos dw = pi * mean of L over cosine-distributed
+ *                 directions that escape the scene (pbrt-v4 A.5.3). */
+#include <math.h>
+
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "methods/patch_direct.h"
+#include "scene/lights.h"
+#include "trace/trace.h"
+
+#define IL_DIRECT_GRID 4                                       /* points: 4 x 4 */
+#define IL_DIRECT_POINTS (IL_DIRECT_GRID * IL_DIRECT_GRID)
+#define IL_SKY_GRID 8                                          /* sky rays: 8 x 8 */
+#define IL_SKY_RAYS (IL_SKY_GRID * IL_SKY_GRID)
+
+/* The quadrature points of a patch: the midpoints of a 4 x 4 grid over its
+ * parameter square with their weights (the midpoint rule, error O(h^2) for
+ * smooth irradiance).  A quad uses its bilinear map P(u,v), each point
+ * weighted by the area element |dP/du x dP/dv| (constant for a
+ * parallelogram); a triangle the area-preserving square-to-triangle map
+ * (equal weights). */
+static void patch_points(const il_vec3 *corners, uint32_t num_corners,
+                         il_vec3 points[IL_DIRECT_POINTS], float weights[IL_DIRECT_POINTS])
+{
+    il_vec3 c0 = corners[0], c1 = corners[1], c2 = corners[2];
+    il_vec3 c3 = num_corners == 4 ? corners[3] : c0;
+    float total = 0.0f;
+    for (int k = 0; k < IL_DIRECT_POINTS; k++) {
+        float u = ((float)(k % IL_DIRECT_GRID) + 0.5f) / IL_DIRECT_GRID;
+        float v = ((float)(k / IL_DIRECT_GRID) + 0.5f) / IL_DIRECT_GRID;
+        if (num_corners == 4) {
+            il_vec3 a = v3_add(v3_scale(c0, (1 - u) * (1 - v)), v3_scale(c1, u * (1 - v)));
+            il_vec3 b = v3_add(v3_scale(c2, u * v), v3_scale(c3, (1 - u) * v));
+            points[k] = v3_add(a, b);
+            il_vec3 du = v3_add(v3_scale(v3_sub(c1, c0), 1 - v), v3_scale(v3_sub(c2, c3), v));
+            il_vec3 dv = v3_add(v3_scale(v3_sub(c3, c0), 1 - u), v3_scale(v3_sub(c2, c1), u));
+            weights[k] = v3_length(v3_cross(du, dv));
+        } else {
+            il_vec2 bc = il_sample_triangle(v2(u, v));
+            float b0 = 1.0f - bc.x - bc.y;
+            points[k] = v3_add(v3_add(v3_scale(c0, b0), v3_scale(c1, bc.x)), v3_scale(c2, bc.y));
+            weights[k] = 1.0f;
+        }
+        total += weights[k];
+    }
+    for (int k = 0; k < IL_DIRECT_POINTS; k++)
+        weights[k] = total > 0.0f ? weights[k] / total : 1.0f / IL_DIRECT_POINTS;
+}
+
+/* Irradiance at p (unit normal n) from the scene's delta lights, with shadows. */
+static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n)
+{
+    il_vec3 e = v3s(0.0f);
+    for (uint32_t l = 0; l < scene->num_lights; l++) {
+        const il_light *light = &scene->lights[l];
+        if (light->kind == IL_LIGHTK_POINT || light->kind == IL_LIGHTK_SPOT) {
+            il_vec3 d = v3_sub(light->position, p);
+            float dist2 = v3_length2(d);
+            if (!(dist2 > 0.0f))
+                continue;
+            float dist = sqrtf(dist2);
+            il_vec3 wi = v3_scale(d, 1.0f / dist);
+            float cos_n = v3_dot(n, wi);
+            if (cos_n <= 0.0f)
+                continue;
+            float scale = cos_n / dist2;
+            if (light->kind == IL_LIGHTK_SPOT) {
+                float c = -v3_dot(light->direction, wi); /* angle to the spot's axis */
+                if (c < light->cos_cutoff)
+                    continue;
+                if (light->spot_exponent > 0.0f) {
+                    if (c <= 0.0f)
+                        continue;
+                    scale *= powf(c, light->spot_exponent);
+                }
+            }
+            il_ray ray = il_shadow_ray(scene->tracer, p, n, light->position, v3s(0.0f));
+            if (il_trace_occluded(scene->tracer, &ray))
+                continue;
+            e = v3_fma(e, light->intensity, scale);
+        } else if (light->kind == IL_LIGHTK_DIRECTIONAL) {
+            il_vec3 wi = v3_neg(light->direction);
+            float cos_n = v3_dot(n, wi);
+            if (cos_n <= 0.0f)
+                continue;
+            il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, wi), .tmin = 0.0f, .dir = wi,
+                          .tmax = INFINITY};
+            if (il_trace_occluded(scene->tracer, &ray))
+                continue;
+            e = v3_fma(e, light->intensity, cos_n);
+        }
+    }
+    return e;
+}
+
+static bool has_delta(const il_scene *scene)
+{
+    for (uint32_t l = 0; l < scene->num_lights; l++) {
+        il_light_kind k = scene->lights[l].kind;
+        if (k == IL_LIGHTK_POINT || k == IL_LIGHTK_SPOT || k == IL_LIGHTK_DIRECTIONAL)
+            return true;
+    }
+    return false;
+}
+
+void il_patch_direct_kinds(const il_scene *scene, bool *delta, bool *sky)
+{
+    *delta = has_delta(scene);
+    *sky = scene->has_environment && !v3_is_zero(scene->environment.radiance);
+}
+
+il_vec3 il_patch_direct_irradiance(const il_scene *scene, const il_vec3 *corners,
+                                   uint32_t num_corners, il_vec3 n, uint64_t seed,
+                                   uint64_t stream, bool delta, bool sky)
+{
+    il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed, 0x7261646469726563ull /* "raddirec" */),
+                                 stream);
+    il_vec3 points[IL_DIRECT_POINTS];
+    float weights[IL_DIRECT_POINTS];
+    patch_points(corners, num_corners, points, weights);
+    il_vec3 e = v3s(0.0f);
+    if (delta) {
+        for (int k = 0; k < IL_DIRECT_POINTS; k++)
+            e = v3_fma(e, delta_irradiance(scene, points[k], n), weights[k]);
+    }
+    if (sky) {
+        /* Cosine-distributed directions, jittered 8 x 8 strata, four per
+         * point (the points' weights differ little from equal: ignored). */
+        il_frame f = il_frame_from_normal(n);
+        il_vec3 sum = v3s(0.0f);
+        for (int r = 0; r < IL_SKY_RAYS; r++) {
+            float ux = ((float)(r % IL_SKY_GRID) + il_pcg32_float(&rng)) / IL_SKY_GRID;
+            float uy = ((float)(r / IL_SKY_GRID) + il_pcg32_float(&rng)) / IL_SKY_GRID;
+            il_vec3 dir = il_frame_to_world(&f, il_sample_cosine_hemisphere(v2(ux, uy)));
+            il_vec3 p = points[(r * IL_DIRECT_POINTS) / IL_SKY_RAYS];
+            il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, dir), .tmin = 0.0f,
+                          .dir = dir, .tmax = INFINITY};
+            if (!il_trace_occluded(scene->tracer, &ray))
+                sum = v3_add(sum, il_environment_radiance(scene, dir));
+        }
+        e = v3_fma(e, sum, IL_PI / IL_SKY_RAYS);
+    }
+    return e;
+}
+
