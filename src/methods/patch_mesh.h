@@ -81,9 +81,10 @@ void il_patch_vertex_radiance(const il_patch_mesh *mesh, const il_vec3 *patch_ra
 /* Camera pass: rays hit the meshed scene; on diffuse surfaces the radiance
  * interpolated from the vertices is the answer; mirror and glass continue the
  * path by BSDF sampling as the path tracer does; Phong surfaces add their
- * glossy lobe by sampling it.  desc->spp samples per pixel (jittered). */
+ * glossy lobe by sampling it.  desc->spp samples per pixel (jittered).
+ * stats (may be NULL): spp is set, rays and nonfinite_samples are added to. */
 il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
-                             const il_vec3 *vertex_radiance, il_film *film,
-                             const il_render_desc *desc, il_render_stats *stats, il_error *err);
+                               const il_vec3 *vertex_radiance, il_film *film,
+                               const il_render_desc *desc, il_render_stats *stats, il_error *err);
 
 #endif

@@ -171,11 +171,11 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
 }
 
 /* stats: spp is set, rays and nonfinite_samples are added to (the solve may
- * have counted its own), radiosity.seconds_render is set; stats->seconds
- * (the whole method's time) is left to the caller. */
+ * have counted its own); the method's own fields and stats->seconds are left
+ * to the caller. */
 il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
-                             const il_vec3 *vertex_radiance, il_film *film,
-                             const il_render_desc *desc, il_render_stats *stats, il_error *err)
+                               const il_vec3 *vertex_radiance, il_film *film,
+                               const il_render_desc *desc, il_render_stats *stats, il_error *err)
 {
     if (!scene || !mesh || !vertex_radiance || !film || !desc)
         return il_fail(err, IL_ERR_INVALID,
@@ -193,7 +193,6 @@ il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
         stats->spp = r.spp;
         stats->rays += r.rays;
         stats->nonfinite_samples += r.nonfinite_samples;
-        stats->radiosity.seconds_render = r.seconds;
     }
     return IL_OK;
 }

@@ -97,14 +97,10 @@ il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_des
     il_status st = il_hr_run(scene, desc, &mesh, &vr, stats, err);
     if (st != IL_OK)
         return st;
-    il_render_stats pass;
-    memset(&pass, 0, sizeof pass);
+    /* The camera pass sets spp and adds its rays to the solver's stats. */
     double t1 = omp_get_wtime();
-    st = il_patch_render_film(scene, mesh, vr, film, desc, &pass, err);
+    st = il_patch_render_film(scene, mesh, vr, film, desc, stats, err);
     stats->hr.seconds_render = omp_get_wtime() - t1;
-    stats->spp = pass.spp;
-    stats->rays = pass.rays;
-    stats->nonfinite_samples = pass.nonfinite_samples;
     stats->seconds = omp_get_wtime() - t0;
     il_patch_mesh_release(mesh);
     free(vr);

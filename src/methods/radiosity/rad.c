@@ -176,15 +176,10 @@ il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_de
     il_status st = il_rad_run(scene, desc, &mesh, NULL, &vr, stats, err);
     if (st != IL_OK)
         return st;
-    /* The camera pass fills its own stats; keep the solver's. */
-    il_render_stats pass;
-    memset(&pass, 0, sizeof pass);
+    /* The camera pass sets spp and adds its rays to the solver's stats. */
     double t1 = omp_get_wtime();
-    st = il_patch_render_film(scene, mesh, vr, film, desc, &pass, err);
+    st = il_patch_render_film(scene, mesh, vr, film, desc, stats, err);
     stats->radiosity.seconds_render = omp_get_wtime() - t1;
-    stats->spp = pass.spp;
-    stats->rays = pass.rays;
-    stats->nonfinite_samples = pass.nonfinite_samples;
     stats->seconds = omp_get_wtime() - t0;
     il_patch_mesh_release(mesh);
     free(vr);
