@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "methods/radiosity/rad_ff_internal.h"
 
 #define IL_FF_RAY_BATCH 256
@@ -80,9 +81,8 @@ static inline il_vec3 cosine_direction(il_vec2 u)
 }
 
 /* A uniform point on the patch for u in [0,1)^2: a quad is two triangles
- * (a b c) and (a c d) chosen by area along u.x; inside a triangle the
- * square is folded onto it without a square root (the map of
- * il_sample_triangle: Heitz 2019). */
+ * (a b c) and (a c d) chosen by area along u.x; inside a triangle
+ * il_sample_triangle (Heitz 2019) maps the square onto it. */
 static inline il_vec3 patch_point(const il_vec3 *corner, uint32_t num_corners, float first_share,
                                   il_vec2 u)
 {
@@ -97,15 +97,8 @@ static inline il_vec3 patch_point(const il_vec3 *corner, uint32_t num_corners, f
         }
         u.x = il_minf(u.x, 0x1.fffffep-1f);
     }
-    float b1, b2;
-    if (u.x < u.y) {
-        b1 = 0.5f * u.x;
-        b2 = u.y - b1;
-    } else {
-        b2 = 0.5f * u.y;
-        b1 = u.x - b2;
-    }
-    return v3_add(a, v3_add(v3_scale(v3_sub(b, a), b1), v3_scale(v3_sub(c, a), b2)));
+    il_vec2 bary = il_sample_triangle(u);
+    return v3_add(a, v3_add(v3_scale(v3_sub(b, a), bary.x), v3_scale(v3_sub(c, a), bary.y)));
 }
 
 /* The ray of sample (up, ud): a point on the patch lifted off it along the

@@ -162,3 +162,24 @@ il_status il_rad_solve(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *
     stats->cache_bytes = il_ff_cache_bytes(cache);
     return st;
 }
+
+bool il_rad_report_step(const il_patch_mesh *mesh, const il_rad_settings *settings,
+                        const il_vec3 *radiance, il_vec3 ambient, float *display,
+                        uint32_t steps, double unshot_fraction, double seconds)
+{
+    uint32_t n = mesh->num_patches;
+    for (uint32_t i = 0; i < n; i++) {
+        il_vec3 c = v3_add(radiance[i], v3_mul(mesh->patches[i].rho, ambient));
+        display[3 * (size_t)i + 0] = c.x;
+        display[3 * (size_t)i + 1] = c.y;
+        display[3 * (size_t)i + 2] = c.z;
+    }
+    il_radiosity_progress prog = {
+        .step = steps,
+        .num_patches = n,
+        .unshot_fraction = unshot_fraction,
+        .seconds = seconds,
+        .radiance = display,
+    };
+    return settings->on_step(&prog, settings->on_step_user);
+}

@@ -32,4 +32,11 @@ size_t il_rad_rows_bytes(const il_rad_rows *rows);
  * (up to the factor pi), summed in patch order. */
 double il_rad_power(const il_patch_mesh *mesh, const il_vec3 *v);
 
+/* Calls settings->on_step after a shot batch or sweep: display (3 floats per
+ * patch) is filled with radiance + rho * ambient.  Returns the callback's
+ * answer (false: stop). */
+bool il_rad_report_step(const il_patch_mesh *mesh, const il_rad_settings *settings,
+                        const il_vec3 *radiance, il_vec3 ambient, float *display,
+                        uint32_t steps, double unshot_fraction, double seconds);
+
 #endif

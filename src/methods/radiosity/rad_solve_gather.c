@@ -126,22 +126,9 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
             sum += change[i];
         frac = sum / p0;
         steps++;
-        if (settings->on_step) {
-            for (uint32_t i = 0; i < n; i++) {
-                display[3 * (size_t)i + 0] = L[i].x;
-                display[3 * (size_t)i + 1] = L[i].y;
-                display[3 * (size_t)i + 2] = L[i].z;
-            }
-            il_radiosity_progress prog = {
-                .step = steps,
-                .num_patches = n,
-                .unshot_fraction = frac,
-                .seconds = omp_get_wtime() - t0,
-                .radiance = display,
-            };
-            if (!settings->on_step(&prog, settings->on_step_user))
-                break;
-        }
+        if (settings->on_step && !il_rad_report_step(mesh, settings, L, v3s(0.0f), display,
+                                                     steps, frac, omp_get_wtime() - t0))
+            break;
         if (frac < settings->tolerance)
             break;
     }

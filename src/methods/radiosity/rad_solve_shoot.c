@@ -161,24 +161,11 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
         steps += batch;
         scan_unshot(mesh, sol->unshot, &scan);
         frac = scan.unshot_power / p0;
-        if (settings->on_step) {
-            il_vec3 amb = ambient_term(R, scan.unshot_sum, total_area);
-            for (uint32_t i = 0; i < n; i++) {
-                il_vec3 c = v3_add(sol->radiance[i], v3_mul(mesh->patches[i].rho, amb));
-                display[3 * (size_t)i + 0] = c.x;
-                display[3 * (size_t)i + 1] = c.y;
-                display[3 * (size_t)i + 2] = c.z;
-            }
-            il_radiosity_progress prog = {
-                .step = steps,
-                .num_patches = n,
-                .unshot_fraction = frac,
-                .seconds = omp_get_wtime() - t0,
-                .radiance = display,
-            };
-            if (!settings->on_step(&prog, settings->on_step_user))
-                break;
-        }
+        if (settings->on_step &&
+            !il_rad_report_step(mesh, settings, sol->radiance,
+                                ambient_term(R, scan.unshot_sum, total_area), display, steps,
+                                frac, omp_get_wtime() - t0))
+            break;
     }
     sol->steps = steps;
     sol->unshot_fraction = frac;
