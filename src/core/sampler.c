@@ -22,6 +22,18 @@ static inline uint32_t reverse_bits(uint32_t x)
     return x;
 }
 
+/* Reverses the bits of both 32-bit halves of x at once (the same steps on
+ * 64 bits; the byte swap also swaps the halves, which the caller undoes by
+ * reading them the other way round). */
+static inline uint64_t reverse_bits_pair_swapped(uint64_t x)
+{
+    x = __builtin_bswap64(x);
+    x = ((x & 0x0f0f0f0f0f0f0f0full) << 4) | ((x & 0xf0f0f0f0f0f0f0f0ull) >> 4);
+    x = ((x & 0x3333333333333333ull) << 2) | ((x & 0xccccccccccccccccull) >> 2);
+    x = ((x & 0x5555555555555555ull) << 1) | ((x & 0xaaaaaaaaaaaaaaaaull) >> 1);
+    return x;
+}
+
 /* Second Sobol dimension, bit-reversed.  With the polynomial x + 1 (degree 1,
  * m_1 = 1) the direction numbers follow v_k = v_{k-1} ^ (v_{k-1} >> 1),
  * v_0 = 2^31 (Bratley & Fox 1988; Joe & Kuo 2008): the rows of Pascal's
@@ -66,25 +78,57 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
     s->seed = seed;
     s->pixel = pixel;
     s->index = sample_index;
+    s->index_reversed = reverse_bits(sample_index);
     s->dim = 0;
     s->key = il_hash_combine(il_hash64(seed), pixel);
-    s->rng = il_pcg32_seed(il_hash_combine(s->key, sample_index), 0x5851f42d4c957f2dull);
+    /* The PCG stream is only seeded when it is used. */
+    if (type == IL_SAMPLER_PCG)
+        s->rng = il_pcg32_seed(il_hash_combine(s->key, sample_index), 0x5851f42d4c957f2dull);
+    else
+        s->rng = (il_pcg32){0u, 0u};
+}
+
+/* The scrambling seeds of the pair of dimensions (dim, dim+1): three 32-bit
+ * seeds from one 64-bit hash of (pixel key, dimension), the two halves and a
+ * third from one more multiplication. */
+typedef struct pair_seeds { uint32_t x, y, shuffle; } pair_seeds;
+
+static inline pair_seeds pair_seeds_of(const il_sampler *s, uint32_t dim)
+{
+    uint64_t key = il_hash64(s->key + 0x9e3779b97f4a7c15ull * (uint64_t)(dim + 1));
+    return (pair_seeds){(uint32_t)key, (uint32_t)(key >> 32),
+                        (uint32_t)((key * 0xda942042e4dd58b5ull) >> 32)};
+}
+
+/* The shuffled sample index of a pair: the index Owen-scrambled with the
+ * pair's own seed (Burley section 4).  reverse(index) is computed once per
+ * sample in il_sampler_start. */
+static inline uint32_t shuffled_index(const il_sampler *s, pair_seeds k)
+{
+    return owen_scramble_reversed(s->index_reversed, k.shuffle);
 }
 
 /* The pair of dimensions (dim, dim+1) of the scrambled, shuffled sequence.
  * Dimension 0 of Sobol is reverse_bits(i), so scrambling it needs no
- * reversal at all; the shuffled index is the Owen-scrambled sample index. */
-static il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
+ * reversal at all. */
+static inline il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
 {
-    /* Three 32-bit seeds from one 64-bit hash of (pixel key, dimension): the
-     * two halves, and a third from one more multiplication. */
-    uint64_t key = il_hash64(s->key + 0x9e3779b97f4a7c15ull * (uint64_t)(dim + 1));
-    uint32_t seed_x = (uint32_t)key, seed_y = (uint32_t)(key >> 32);
-    uint32_t shuffle_seed = (uint32_t)((key * 0xda942042e4dd58b5ull) >> 32);
-    uint32_t i = owen_scramble_reversed(reverse_bits(s->index), shuffle_seed);
-    uint32_t x = owen_scramble_reversed(i, seed_x);
-    uint32_t y = owen_scramble_reversed(sobol_dim1_reversed(i), seed_y);
-    return v2(il_u32_to_float(x), il_u32_to_float(y));
+    pair_seeds k = pair_seeds_of(s, dim);
+    uint32_t i = shuffled_index(s, k);
+    /* owen_scramble_reversed for both members, the two bit reversals done
+     * together: x in the low half goes to the high half and y vice versa. */
+    uint64_t h = (uint64_t)laine_karras(i, k.x) |
+                 (uint64_t)laine_karras(sobol_dim1_reversed(i), k.y) << 32;
+    uint64_t r = reverse_bits_pair_swapped(h);
+    return v2(il_u32_to_float((uint32_t)(r >> 32)), il_u32_to_float((uint32_t)r));
+}
+
+/* The first member of the pair alone: the same value as sobol_pair(s, dim).x
+ * without the work of the second. */
+static inline float sobol_first(const il_sampler *s, uint32_t dim)
+{
+    pair_seeds k = pair_seeds_of(s, dim);
+    return il_u32_to_float(owen_scramble_reversed(shuffled_index(s, k), k.x));
 }
 
 il_vec2 il_sampler_2d(il_sampler *s)
@@ -99,15 +143,29 @@ il_vec2 il_sampler_2d(il_sampler *s)
     return sobol_pair(s, dim);
 }
 
+void il_sampler_2d_n(il_sampler *s, il_vec2 *out, uint32_t n)
+{
+    if (s->type == IL_SAMPLER_PCG) {
+        for (uint32_t j = 0; j < n; j++)
+            out[j] = il_sampler_2d(s);
+        return;
+    }
+    /* Independent pairs: written as one loop so their hash chains overlap. */
+    uint32_t dim = s->dim;
+    s->dim += 2 * n;
+    for (uint32_t j = 0; j < n; j++)
+        out[j] = sobol_pair(s, dim + 2 * j);
+}
+
 /* One dimension from a fresh pair: Burley's pairs are stratified jointly, so
- * the second member is simply not used. */
+ * the second member is simply not used (nor computed). */
 float il_sampler_1d(il_sampler *s)
 {
     uint32_t dim = s->dim;
     s->dim += 2;
     if (s->type == IL_SAMPLER_PCG)
         return il_pcg32_float(&s->rng);
-    return sobol_pair(s, dim).x;
+    return sobol_first(s, dim);
 }
 
 il_vec2 il_sobol02(uint32_t index)

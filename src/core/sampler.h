@@ -14,6 +14,7 @@ typedef struct il_sampler {
     uint64_t seed;
     uint64_t pixel;
     uint32_t index;       /* sample index within the pixel */
+    uint32_t index_reversed; /* reverse_bits(index), for the shuffles */
     uint32_t dim;         /* next dimension */
     il_pcg32 rng;
     uint64_t key;         /* hash(seed, pixel), computed once per sample */
@@ -23,6 +24,9 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
                       uint32_t sample_index);
 float il_sampler_1d(il_sampler *s);
 il_vec2 il_sampler_2d(il_sampler *s);
+/* n consecutive 2D draws at once: the same numbers as n calls of
+ * il_sampler_2d, computed together. */
+void il_sampler_2d_n(il_sampler *s, il_vec2 *out, uint32_t n);
 
 /* Point `index` of the plain, unscrambled (0,2)-sequence (Sobol dimensions 0
  * and 1), for tests of its stratification. */

@@ -6,9 +6,11 @@
 
 #include <stdint.h>
 #include "core/sampler.h"
+#include "methods/camera_pass.h"
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
+#include "trace/trace.h"
 
 /* Which estimator of direct light to use.  Only IL_PT_MIS is offered to
  * users; the other two exist so tests can check that all three agree. */
@@ -31,5 +33,42 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
  * (dir unit).  Counts rays cast in *rays. */
 il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampler *sampler,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays);
+
+/* The camera pass of il_pt_render (pt_wavefront.c): what il_camera_pass
+ * does with il_pt_radiance, bit for bit, with the paths of a tile traced
+ * together through the stream calls.  Fails only when out of memory. */
+il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                               uint32_t max_depth, il_pt_strategy strategy,
+                               il_camera_pass_result *out, il_error *err);
+
+/* The same estimator one vertex at a time, so that a caller can trace the
+ * rays of many paths together (pt_wavefront.c): il_pt_begin starts a path
+ * with the camera ray in st->ray; the caller traces st->ray and passes the
+ * hit (NULL on a miss) to il_pt_step, which adds what the vertex sees to
+ * st->L, may leave a shadow ray in st->shadow_ray (st->shadow true), whose
+ * outcome the caller reports with il_pt_shadow_result before the next
+ * step, and returns false when the path ends (after its shadow ray). */
+typedef struct il_pt_state {
+    il_vec3 L, beta;
+    il_vec3 prev_p;        /* the previous vertex */
+    float prev_pdf;        /* solid-angle pdf of the BSDF sample that led here */
+    bool specular;         /* the ray left a delta lobe (or the camera) */
+    bool shadow;           /* shadow_ray must be traced */
+    uint32_t depth;        /* scattering events before st->ray */
+    il_ray ray;
+    il_ray shadow_ray;
+    il_vec3 shadow_L;      /* added to L when shadow_ray is unoccluded */
+    uint64_t rays;         /* rays cast or to be cast so far */
+} il_pt_state;
+
+void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir);
+bool il_pt_step(const il_scene *scene, il_pt_state *st, const il_hit *hit, il_sampler *sampler,
+                uint32_t max_depth, il_pt_strategy strategy);
+static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
+{
+    if (!occluded)
+        st->L = v3_add(st->L, st->shadow_L);
+    st->shadow = false;
+}
 
 #endif

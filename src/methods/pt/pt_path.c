@@ -31,111 +31,139 @@ static inline il_vec3 add_scaled(il_vec3 acc, il_vec3 beta, il_vec3 value, float
     return v3_add(acc, v3_scale(v3_mul(beta, value), w));
 }
 
+void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir)
+{
+    st->L = v3s(0.0f);
+    st->beta = v3s(1.0f);
+    st->specular = true;          /* camera rays see emitters at full weight */
+    st->prev_pdf = 0.0f;
+    st->prev_p = org;
+    st->depth = 0;
+    st->ray = (il_ray){.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
+    st->shadow = false;
+    st->rays = 1;                 /* the camera ray */
+}
+
+bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sampler *smp,
+                uint32_t max_depth, il_pt_strategy strategy)
+{
+    const il_tracer *tr = s->tracer;
+    st->shadow = false;
+    if (!hit) {
+        il_vec3 le = il_environment_radiance(s, st->ray.dir);
+        if (!v3_is_zero(le)) {
+            float w = st->specular ? 1.0f
+                                   : mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf,
+                                                il_light_pdf_environment(s, st->ray.dir));
+            st->L = add_scaled(st->L, st->beta, le, w);
+        }
+        return false;
+    }
+    /* `depth` counts the scattering events before the current ray. */
+    uint32_t depth = st->depth;
+    il_surface surf;
+    il_scene_surface(s, hit->mesh, hit->prim, hit->b1, hit->b2, &surf);
+    il_vec3 wo = v3_neg(st->ray.dir);
+    const il_material *m = surf.material;
+
+    /* An emitter found by the camera ray or by BSDF sampling. */
+    if (!v3_is_zero(m->emission)) {
+        il_vec3 le = il_emitted_radiance(m, surf.ng, wo);
+        if (!v3_is_zero(le)) {
+            float w = 1.0f;
+            if (!st->specular) {
+                uint32_t light = s->triangle_light[hit->mesh][hit->prim];
+                w = mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf,
+                               il_light_pdf_area(s, light, st->prev_p, surf.p, surf.ng));
+            }
+            st->L = add_scaled(st->L, st->beta, le, w);
+        }
+    }
+    /* max_depth scattering events (bounces) at most: after the last one
+     * only its BSDF-sampled emitter hit above is still counted, so
+     * max_depth 1 is exactly direct lighting (pbrt-v4's maxdepth). */
+    if (depth >= max_depth)
+        return false;
+
+    il_bsdf b;
+    il_bsdf_init(&b, s, &surf);
+    /* The sample dimensions are drawn in the same order at every vertex,
+     * whatever happens, so a vertex's numbers never depend on branches
+     * (the roulette number, drawn last, only from the fourth bounce on).
+     * The light choice and the BSDF lobe choice share one pair. */
+    il_vec2 u[3];
+    il_sampler_2d_n(smp, u, 3);
+    il_vec2 u_choice = u[0], u_light = u[1], u_bsdf = u[2];
+    float u_select = u_choice.x, u_lobe = u_choice.y;
+
+    /* Next-event estimation: a light sample and a shadow ray, which the
+     * caller traces; its contribution is added when nothing blocks it. */
+    il_light_sample ls;
+    if (!il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
+        il_sides_agree(&surf, wo, ls.wi)) {
+        float w = 1.0f, bsdf_pdf = 0.0f;
+        il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
+        if (!ls.delta)
+            w = mis_weight(strategy, IL_PT_NEE_ONLY, ls.pdf, bsdf_pdf);
+        float cos_i = fabsf(v3_dot(ls.wi, b.frame.n));
+        if (w > 0.0f && cos_i > 0.0f && !v3_is_zero(f)) {
+            if (isinf(ls.dist)) {
+                st->shadow_ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, ls.wi),
+                                          .tmin = 0.0f, .dir = ls.wi, .tmax = INFINITY};
+            } else {
+                st->shadow_ray = il_shadow_ray(tr, surf.p, surf.ng, ls.p, ls.n);
+            }
+            st->shadow = true;
+            st->rays++;
+            st->shadow_L = v3_scale(v3_mul(st->beta, v3_mul(f, ls.radiance)), cos_i * w / ls.pdf);
+        }
+    }
+
+    /* BSDF sampling continues the path. */
+    il_bsdf_sample bs;
+    if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !il_sides_agree(&surf, wo, bs.wi))
+        return false;
+    il_vec3 beta = v3_mul(st->beta, bs.weight);
+    if (v3_is_zero(beta) || !v3_is_finite(beta))
+        return false;
+    st->specular = bs.delta;
+    st->prev_pdf = bs.pdf;
+    st->prev_p = surf.p;
+    st->ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f,
+                       .dir = bs.wi, .tmax = INFINITY};
+
+    /* Russian roulette after the third vertex (pbrt-v4 13.4.4): survive
+     * with probability q = min(max component of the throughput, 0.95) and
+     * divide by q, which keeps the estimate unbiased. */
+    if (depth >= 3) {
+        float q = il_minf(v3_max_comp(beta), 0.95f);
+        if (!(il_sampler_1d(smp) < q)) {
+            st->beta = beta;
+            return false;
+        }
+        beta = v3_scale(beta, 1.0f / q);
+    }
+    st->beta = beta;
+    st->depth = depth + 1;
+    st->rays++;                   /* the next ray */
+    return true;
+}
+
 il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *smp,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays)
 {
     const il_tracer *tr = s->tracer;
-    il_vec3 L = v3s(0.0f), beta = v3s(1.0f);
-    bool specular = true;          /* camera rays see emitters at full weight */
-    float prev_pdf = 0.0f;         /* solid-angle pdf of the BSDF sample that led here */
-    il_vec3 prev_p = org;
-    il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
-    uint64_t nrays = 0;
-
-    /* `depth` counts the scattering events before the current ray. */
-    for (uint32_t depth = 0;; depth++) {
+    il_pt_state st;
+    il_pt_begin(&st, org, dir);
+    for (;;) {
         il_hit hit;
-        nrays++;
-        if (!il_trace_closest(tr, &ray, &hit)) {
-            il_vec3 le = il_environment_radiance(s, ray.dir);
-            if (!v3_is_zero(le)) {
-                float w = specular ? 1.0f
-                                   : mis_weight(strategy, IL_PT_BSDF_ONLY, prev_pdf, il_light_pdf_environment(s, ray.dir));
-                L = add_scaled(L, beta, le, w);
-            }
+        bool found = il_trace_closest(tr, &st.ray, &hit);
+        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, max_depth, strategy);
+        if (st.shadow)
+            il_pt_shadow_result(&st, il_trace_occluded(tr, &st.shadow_ray));
+        if (!more)
             break;
-        }
-        il_surface surf;
-        il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
-        il_vec3 wo = v3_neg(ray.dir);
-        const il_material *m = surf.material;
-
-        /* An emitter found by the camera ray or by BSDF sampling. */
-        if (!v3_is_zero(m->emission)) {
-            il_vec3 le = il_emitted_radiance(m, surf.ng, wo);
-            if (!v3_is_zero(le)) {
-                float w = 1.0f;
-                if (!specular) {
-                    uint32_t light = s->triangle_light[hit.mesh][hit.prim];
-                    w = mis_weight(strategy, IL_PT_BSDF_ONLY, prev_pdf,
-                                   il_light_pdf_area(s, light, prev_p, surf.p, surf.ng));
-                }
-                L = add_scaled(L, beta, le, w);
-            }
-        }
-        /* max_depth scattering events (bounces) at most: after the last
-         * one only its BSDF-sampled emitter hit above is still counted, so
-         * max_depth 1 is exactly direct lighting (pbrt-v4's maxdepth). */
-        if (depth >= max_depth)
-            break;
-
-        il_bsdf b;
-        il_bsdf_init(&b, s, &surf);
-        /* The sample dimensions are drawn in the same order at every vertex,
-         * whatever happens, so a vertex's numbers never depend on branches
-         * (the roulette number, drawn last, only from the fourth bounce on).
-         * The light choice and the BSDF lobe choice share one pair. */
-        il_vec2 u_choice = il_sampler_2d(smp);
-        il_vec2 u_light = il_sampler_2d(smp);
-        il_vec2 u_bsdf = il_sampler_2d(smp);
-        float u_select = u_choice.x, u_lobe = u_choice.y;
-
-        /* Next-event estimation: a light sample and a shadow ray. */
-        il_light_sample ls;
-        if (!il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
-            il_sides_agree(&surf, wo, ls.wi)) {
-            float w = 1.0f, bsdf_pdf = 0.0f;
-            il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
-            if (!ls.delta)
-                w = mis_weight(strategy, IL_PT_NEE_ONLY, ls.pdf, bsdf_pdf);
-            float cos_i = fabsf(v3_dot(ls.wi, b.frame.n));
-            if (w > 0.0f && cos_i > 0.0f && !v3_is_zero(f)) {
-                il_ray sr;
-                if (isinf(ls.dist)) {
-                    sr = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, ls.wi), .tmin = 0.0f,
-                                  .dir = ls.wi, .tmax = INFINITY};
-                } else {
-                    sr = il_shadow_ray(tr, surf.p, surf.ng, ls.p, ls.n);
-                }
-                nrays++;
-                if (!il_trace_occluded(tr, &sr))
-                    L = add_scaled(L, beta, v3_mul(f, ls.radiance), cos_i * w / ls.pdf);
-            }
-        }
-
-        /* BSDF sampling continues the path. */
-        il_bsdf_sample bs;
-        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !il_sides_agree(&surf, wo, bs.wi))
-            break;
-        beta = v3_mul(beta, bs.weight);
-        if (v3_is_zero(beta) || !v3_is_finite(beta))
-            break;
-        specular = bs.delta;
-        prev_pdf = bs.pdf;
-        prev_p = surf.p;
-        ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f,
-                       .dir = bs.wi, .tmax = INFINITY};
-
-        /* Russian roulette after the third vertex (pbrt-v4 13.4.4): survive
-         * with probability q = min(max component of the throughput, 0.95)
-         * and divide by q, which keeps the estimate unbiased. */
-        if (depth >= 3) {
-            float q = il_minf(v3_max_comp(beta), 0.95f);
-            if (!(il_sampler_1d(smp) < q))
-                break;
-            beta = v3_scale(beta, 1.0f / q);
-        }
     }
-    *rays += nrays;
-    return L;
+    *rays += st.rays;
+    return st.L;
 }
