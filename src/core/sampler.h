@@ -28,6 +28,13 @@ il_vec2 il_sampler_2d(il_sampler *s);
  * il_sampler_2d, computed together. */
 void il_sampler_2d_n(il_sampler *s, il_vec2 *out, uint32_t n);
 
+/* The next `pairs` 2D draws of each of the samplers base[idx[0..n-1]]: the
+ * numbers il_sampler_2d_n(&base[idx[k]], out + k * pairs, pairs) gives,
+ * into out[k * pairs + j], computed for many samplers at once (eight lanes
+ * of AVX2 where the CPU has it).  Every sampler advances past them. */
+void il_sampler_2d_gather(il_sampler *base, const uint32_t *idx, uint32_t n, uint32_t pairs,
+                          il_vec2 *out);
+
 /* Point `index` of the plain, unscrambled (0,2)-sequence (Sobol dimensions 0
  * and 1), for tests of its stratification. */
 il_vec2 il_sobol02(uint32_t index);

@@ -9,9 +9,10 @@
 #include "methods/camera_pass.h"
 
 #include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "scene/camera.h"
+#include "core/error.h"
 
 #define IL_TILE 16
 /* A pass renders about this many samples, at least 1 and at most 64 per
@@ -20,66 +21,88 @@
 #define IL_PASS_SAMPLES 65536u
 #define IL_PASS_MAX_SPP 64u
 
-typedef struct pass_job {
-    il_film *film;
-    il_camera cam;
-    uint32_t width, height, tiles_x;
-    uint64_t seed;
-    il_sampler_type sampler;
-    il_filter_type filter;
+il_vec3 il_camera_sample(const il_camera_pass_ctx *ctx, uint32_t x, uint32_t y, uint32_t i,
+                         il_sampler *smp)
+{
+    il_sampler_start(smp, ctx->sampler, ctx->seed, (uint64_t)y * ctx->width + x, i);
+    il_vec2 off = il_filter_offset(ctx->filter, il_sampler_2d(smp));
+    return il_camera_ray_dir(&ctx->cam, (float)x + off.x, (float)y + off.y);
+}
+
+void il_camera_tile_add(const il_camera_pass_ctx *ctx, il_camera_tile *tile, uint32_t x, uint32_t y,
+                        il_vec3 L)
+{
+    if (!v3_is_finite(L)) {
+        tile->nonfinite++;
+        return;
+    }
+    il_film_add_sample(ctx->film, x, y, L, 1.0f);
+}
+
+/* ---- the per-sample form: a tile callback that asks for one radiance
+ * estimate per sample ---- */
+
+typedef struct sample_method {
     il_camera_radiance_fn radiance;
     const void *method;
-} pass_job;
+} sample_method;
 
-static void render_tile(const pass_job *job, uint32_t tile, uint32_t first, uint32_t count,
-                        uint64_t *rays, uint64_t *bad)
+static void sample_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
-    uint32_t x0 = (tile % job->tiles_x) * IL_TILE, y0 = (tile / job->tiles_x) * IL_TILE;
-    uint32_t x1 = x0 + IL_TILE < job->width ? x0 + IL_TILE : job->width;
-    uint32_t y1 = y0 + IL_TILE < job->height ? y0 + IL_TILE : job->height;
-    for (uint32_t y = y0; y < y1; y++)
-        for (uint32_t x = x0; x < x1; x++) {
-            uint64_t pixel = (uint64_t)y * job->width + x;
-            for (uint32_t i = first; i < first + count; i++) {
+    const sample_method *m = method;
+    for (uint32_t y = tile->y0; y < tile->y1; y++)
+        for (uint32_t x = tile->x0; x < tile->x1; x++)
+            for (uint32_t i = tile->first; i < tile->first + tile->count; i++) {
                 il_sampler smp;
-                il_sampler_start(&smp, job->sampler, job->seed, pixel, i);
-                il_vec2 off = il_filter_offset(job->filter, il_sampler_2d(&smp));
-                il_vec3 dir = il_camera_ray_dir(&job->cam, (float)x + off.x, (float)y + off.y);
-                il_vec3 L = job->radiance(job->method, job->cam.position, dir, &smp, rays);
-                /* A NaN or Inf would poison the pixel for good: drop the sample. */
-                if (!v3_is_finite(L)) {
-                    (*bad)++;
-                    continue;
-                }
-                il_film_add_sample(job->film, x, y, L, 1.0f);
+                il_vec3 dir = il_camera_sample(ctx, x, y, i, &smp);
+                il_vec3 L = m->radiance(m->method, ctx->cam.position, dir, &smp, &tile->rays);
+                il_camera_tile_add(ctx, tile, x, y, L);
             }
-        }
 }
 
 void il_camera_pass(const il_scene *scene, il_film *film, const il_render_desc *desc,
                     il_camera_radiance_fn radiance, const void *method,
                     il_camera_pass_result *out)
 {
-    pass_job job;
-    memset(&job, 0, sizeof job);
-    job.film = film;
-    job.width = il_film_width(film);
-    job.height = il_film_height(film);
-    job.tiles_x = (job.width + IL_TILE - 1) / IL_TILE;
-    job.seed = desc->seed;
-    job.sampler = desc->sampler;
-    job.filter = desc->filter;
-    job.radiance = radiance;
-    job.method = method;
-    il_camera_init(&job.cam, &scene->camera.desc, job.width, job.height);
+    sample_method m = {radiance, method};
+    /* Without scratch memory the pass cannot fail. */
+    (void)il_camera_pass_tiles(scene, film, desc, sample_tile, &m, 0, out, NULL);
+}
+
+/* ---- the pass ---- */
+
+il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                               il_camera_tile_fn tile_fn, const void *method, size_t scratch_bytes,
+                               il_camera_pass_result *out, il_error *err)
+{
+    il_camera_pass_ctx ctx;
+    memset(&ctx, 0, sizeof ctx);
+    ctx.film = film;
+    ctx.width = il_film_width(film);
+    ctx.height = il_film_height(film);
+    ctx.seed = desc->seed;
+    ctx.sampler = desc->sampler;
+    ctx.filter = desc->filter;
+    il_camera_init(&ctx.cam, &scene->camera.desc, ctx.width, ctx.height);
 
     bool timed = desc->time_limit > 0.0;
     uint32_t spp = desc->spp ? desc->spp : (timed ? UINT32_MAX : 16u);
     int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
-    uint64_t pixels = (uint64_t)job.width * job.height;
-    uint32_t tiles = job.tiles_x * ((job.height + IL_TILE - 1) / IL_TILE);
+    uint64_t pixels = (uint64_t)ctx.width * ctx.height;
+    uint32_t tiles_x = (ctx.width + IL_TILE - 1) / IL_TILE;
+    uint32_t tiles = tiles_x * ((ctx.height + IL_TILE - 1) / IL_TILE);
     uint32_t per_pass = pixels ? (uint32_t)(IL_PASS_SAMPLES / pixels) : 1u;
     per_pass = per_pass < 1 ? 1 : (per_pass > IL_PASS_MAX_SPP ? IL_PASS_MAX_SPP : per_pass);
+
+    /* Each thread's scratch, rounded up to whole cache lines. */
+    size_t stride = (scratch_bytes + 63) / 64 * 64;
+    unsigned char *scratch = NULL;
+    if (stride > 0) {
+        scratch = aligned_alloc(64, (size_t)threads * stride);
+        if (!scratch)
+            return il_fail(err, IL_ERR_MEMORY, "render: out of memory (%zu bytes per thread)",
+                           scratch_bytes);
+    }
 
     il_film_clear(film);
     double t0 = omp_get_wtime(), seconds = 0.0;
@@ -89,8 +112,21 @@ void il_camera_pass(const il_scene *scene, il_film *film, const il_render_desc *
         uint32_t count = spp - done < per_pass ? spp - done : per_pass;
         uint64_t pass_rays = 0, pass_bad = 0;
 #pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : pass_rays, pass_bad)
-        for (uint32_t t = 0; t < tiles; t++)
-            render_tile(&job, t, done, count, &pass_rays, &pass_bad);
+        for (uint32_t t = 0; t < tiles; t++) {
+            uint32_t x0 = (t % tiles_x) * IL_TILE, y0 = (t / tiles_x) * IL_TILE;
+            il_camera_tile tile = {
+                .x0 = x0,
+                .y0 = y0,
+                .x1 = x0 + IL_TILE < ctx.width ? x0 + IL_TILE : ctx.width,
+                .y1 = y0 + IL_TILE < ctx.height ? y0 + IL_TILE : ctx.height,
+                .first = done,
+                .count = count,
+                .scratch = scratch ? scratch + (size_t)omp_get_thread_num() * stride : NULL,
+            };
+            tile_fn(method, &ctx, &tile);
+            pass_rays += tile.rays;
+            pass_bad += tile.nonfinite;
+        }
         done += count;
         rays += pass_rays;
         bad += pass_bad;
@@ -116,4 +152,6 @@ void il_camera_pass(const il_scene *scene, il_film *film, const il_render_desc *
     out->rays = rays;
     out->nonfinite_samples = bad;
     out->seconds = seconds;
+    free(scratch);
+    return IL_OK;
 }

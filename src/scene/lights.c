@@ -291,15 +291,17 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
         out->delta = true;
         return true;
     case IL_LIGHTK_AREA: {
+        /* Only the point and the normal of the surface: the light holds its
+         * material's emission and sidedness (il_emitted_radiance's inputs). */
         il_vec2 b = il_sample_triangle(u);
-        il_surface surf;
-        il_scene_surface(s, l->mesh, l->prim, b.x, b.y, &surf);
+        il_vec3 q, ng;
+        il_scene_point(s, l->mesh, l->prim, b.x, b.y, &q, &ng);
         float dist2;
-        if (!aim_at(out, p, surf.p, &dist2))
+        if (!aim_at(out, p, q, &dist2))
             return false;
-        out->n = surf.ng;
-        out->radiance = il_emitted_radiance(surf.material, surf.ng, v3_neg(out->wi));
-        out->pdf = pmf * area_to_solid_angle(l->area, dist2, v3_dot(surf.ng, out->wi));
+        out->n = ng;
+        out->radiance = l->two_sided || v3_dot(ng, v3_neg(out->wi)) > 0.0f ? l->radiance : v3s(0.0f);
+        out->pdf = pmf * area_to_solid_angle(l->area, dist2, v3_dot(ng, out->wi));
         return out->pdf > 0.0f && isfinite(out->pdf) && !v3_is_zero(out->radiance);
     }
     case IL_LIGHTK_ENVIRONMENT:

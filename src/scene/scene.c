@@ -328,6 +328,46 @@ static void add_default_camera(il_scene *s)
     s->camera.present = true;
 }
 
+/* The record of triangle t of mesh m (see il_tri_geom). */
+static void tri_geom_compute(const il_mesh *m, uint32_t t, il_tri_geom *g)
+{
+    const uint32_t *tri = m->indices + 3 * (size_t)t;
+    g->v[0] = tri[0];
+    g->v[1] = tri[1];
+    g->v[2] = tri[2];
+    g->pad = 0;
+    g->p0 = m->positions[tri[0]];
+    g->p1 = m->positions[tri[1]];
+    g->p2 = m->positions[tri[2]];
+    g->ng = v3_normalize(v3_cross(v3_sub(g->p1, g->p0), v3_sub(g->p2, g->p0)));
+}
+
+static void free_tri_geom(il_scene *s)
+{
+    for (uint32_t i = 0; i < s->num_meshes; i++) {
+        free(s->meshes[i].geom);
+        s->meshes[i].geom = NULL;
+    }
+}
+
+/* Fills every mesh's il_tri_geom records, aligned to cache lines. */
+static il_status build_tri_geom(il_scene *s, il_error *err)
+{
+    free_tri_geom(s);
+    for (uint32_t i = 0; i < s->num_meshes; i++) {
+        il_mesh *m = &s->meshes[i];
+        size_t bytes = (size_t)m->num_triangles * sizeof(il_tri_geom);
+        m->geom = aligned_alloc(64, bytes ? bytes : 64);
+        if (!m->geom) {
+            free_tri_geom(s);
+            return il_fail(err, IL_ERR_MEMORY, "out of memory for the triangle table");
+        }
+        for (uint32_t t = 0; t < m->num_triangles; t++)
+            tri_geom_compute(m, t, &m->geom[t]);
+    }
+    return IL_OK;
+}
+
 il_status il_scene_commit(il_scene *s, il_error *err)
 {
     if (s->committed)
@@ -340,12 +380,18 @@ il_status il_scene_commit(il_scene *s, il_error *err)
     compute_bounds(s);
     if (!s->camera.present)
         add_default_camera(s);
-    il_status st = il_lights_build(s, err);
+    il_status st = build_tri_geom(s, err);
     if (st != IL_OK)
         return st;
+    st = il_lights_build(s, err);
+    if (st != IL_OK) {
+        free_tri_geom(s);
+        return st;
+    }
     st = il_tracer_create(s, &s->tracer, err);
     if (st != IL_OK) {
         il_lights_free(s);
+        free_tri_geom(s);
         return st;
     }
     s->committed = true;
@@ -397,6 +443,7 @@ void il_scene_release(il_scene *s)
         free(s->meshes[i].normals);
         free(s->meshes[i].uvs);
         free(s->meshes[i].indices);
+        free(s->meshes[i].geom);
     }
     free(s->meshes);
     free(s->materials);
@@ -439,34 +486,61 @@ il_vec3 il_material_diffuse(const il_scene *s, const il_material *m, il_vec2 uv)
     return v3_mul(m->diffuse, il_texture_sample(&s->textures[m->diffuse_texture - 1], uv));
 }
 
-void il_scene_surface(const il_scene *s, uint32_t mesh, uint32_t prim, float b1, float b2,
-                      il_surface *out)
+/* The triangle's record: precomputed after il_scene_commit, else computed
+ * into *tmp the same way. */
+static inline const il_tri_geom *tri_geom(const il_mesh *m, uint32_t prim, il_tri_geom *tmp)
 {
-    const il_mesh *m = &s->meshes[mesh];
-    const uint32_t *tri = m->indices + 3 * (size_t)prim;
-    float b0 = 1.0f - b1 - b2;
-    il_vec3 p0 = m->positions[tri[0]], p1 = m->positions[tri[1]], p2 = m->positions[tri[2]];
-    out->p = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
-    out->ng = v3_normalize(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
-    out->ns = out->ng;
+    if (m->geom)
+        return &m->geom[prim];
+    tri_geom_compute(m, prim, tmp);
+    return tmp;
+}
+
+/* The point, the geometric normal and the shading normal at barycentrics
+ * (b1, b2), shared by il_scene_surface and il_scene_point. */
+static inline void point_normals(const il_mesh *m, const il_tri_geom *g, float b1, float b2,
+                                 float b0, il_vec3 *p, il_vec3 *ng, il_vec3 *ns)
+{
+    *p = v3_add(v3_add(v3_scale(g->p0, b0), v3_scale(g->p1, b1)), v3_scale(g->p2, b2));
+    *ng = g->ng;
+    *ns = g->ng;
     if (m->normals) {
-        il_vec3 n = v3_add(v3_add(v3_scale(m->normals[tri[0]], b0), v3_scale(m->normals[tri[1]], b1)),
-                           v3_scale(m->normals[tri[2]], b2));
+        il_vec3 n = v3_add(v3_add(v3_scale(m->normals[g->v[0]], b0), v3_scale(m->normals[g->v[1]], b1)),
+                           v3_scale(m->normals[g->v[2]], b2));
         float l = v3_length(n);
         if (l > 1e-6f && isfinite(l)) {
             /* Authored normals say which side is the front (as in pbrt-v4):
              * the geometric normal is turned to their side. */
-            out->ns = v3_scale(n, 1.0f / l);
-            if (v3_dot(out->ns, out->ng) < 0.0f)
-                out->ng = v3_neg(out->ng);
+            *ns = v3_scale(n, 1.0f / l);
+            if (v3_dot(*ns, *ng) < 0.0f)
+                *ng = v3_neg(*ng);
         }
     }
+}
+
+void il_scene_surface(const il_scene *s, uint32_t mesh, uint32_t prim, float b1, float b2,
+                      il_surface *out)
+{
+    const il_mesh *m = &s->meshes[mesh];
+    il_tri_geom tmp;
+    const il_tri_geom *g = tri_geom(m, prim, &tmp);
+    float b0 = 1.0f - b1 - b2;
+    point_normals(m, g, b1, b2, b0, &out->p, &out->ng, &out->ns);
     out->uv = v2(0.0f, 0.0f);
     if (m->uvs) {
-        il_vec2 a = m->uvs[tri[0]], b = m->uvs[tri[1]], c = m->uvs[tri[2]];
+        il_vec2 a = m->uvs[g->v[0]], b = m->uvs[g->v[1]], c = m->uvs[g->v[2]];
         out->uv = v2(a.x * b0 + b.x * b1 + c.x * b2, a.y * b0 + b.y * b1 + c.y * b2);
     }
     out->mesh = mesh;
     out->prim = prim;
     out->material = &s->materials[m->material];
+}
+
+void il_scene_point(const il_scene *s, uint32_t mesh, uint32_t prim, float b1, float b2,
+                    il_vec3 *p, il_vec3 *ng)
+{
+    const il_mesh *m = &s->meshes[mesh];
+    il_tri_geom tmp;
+    il_vec3 ns;
+    point_normals(m, tri_geom(m, prim, &tmp), b1, b2, 1.0f - b1 - b2, p, ng, &ns);
 }

@@ -14,6 +14,20 @@
 
 typedef struct il_tracer il_tracer;
 
+/* Per-triangle geometry that il_scene_commit precomputes for the surface
+ * queries (il_scene_surface, il_scene_point): the three corners and their
+ * vertex indices, read from one record instead of through the index buffer,
+ * and the unit geometric normal of their winding,
+ * normalize(cross(p1 - p0, p2 - p0)), which would otherwise cost a square
+ * root and a division at every hit.  One 64-byte record (a cache line) per
+ * triangle, contiguous per mesh. */
+typedef struct il_tri_geom {
+    il_vec3 p0, p1, p2;
+    il_vec3 ng;
+    uint32_t v[3];         /* the vertex indices (for normals and uvs) */
+    uint32_t pad;
+} il_tri_geom;
+
 typedef struct il_mesh {
     char name[IL_NAME_MAX];
     uint32_t num_vertices;
@@ -23,6 +37,7 @@ typedef struct il_mesh {
     il_vec2 *uvs;          /* NULL: no texture coordinates */
     uint32_t *indices;     /* 3 per triangle */
     uint32_t material;
+    il_tri_geom *geom;     /* num_triangles records, filled by il_scene_commit (NULL before) */
 } il_mesh;
 
 typedef struct il_texture {
@@ -116,6 +131,11 @@ typedef struct il_surface {
 /* Fills the surface attributes of triangle (mesh, prim) at barycentrics (b1, b2). */
 void il_scene_surface(const il_scene *scene, uint32_t mesh, uint32_t prim, float b1, float b2,
                       il_surface *out);
+
+/* Only the point and the geometric normal of il_scene_surface (the same
+ * values, bit for bit): what sampling a point on an emitter needs. */
+void il_scene_point(const il_scene *scene, uint32_t mesh, uint32_t prim, float b1, float b2,
+                    il_vec3 *p, il_vec3 *ng);
 
 /* The diffuse albedo at a surface point (texture times colour). */
 il_vec3 il_material_diffuse(const il_scene *scene, const il_material *m, il_vec2 uv);

@@ -47,7 +47,10 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
  * hit (NULL on a miss) to il_pt_step, which adds what the vertex sees to
  * st->L, may leave a shadow ray in st->shadow_ray (st->shadow true), whose
  * outcome the caller reports with il_pt_shadow_result before the next
- * step, and returns false when the path ends (after its shadow ray). */
+ * step, and returns false when the path ends (after its shadow ray).
+ * A step at a hit with st->depth < max_depth draws the vertex's three 2D
+ * samples from the sampler first thing; u_drawn, when not NULL, holds them
+ * already drawn (il_sampler_2d_gather does that for many paths at once). */
 typedef struct il_pt_state {
     il_vec3 L, beta;
     il_vec3 prev_p;        /* the previous vertex */
@@ -63,7 +66,7 @@ typedef struct il_pt_state {
 
 void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir);
 bool il_pt_step(const il_scene *scene, il_pt_state *st, const il_hit *hit, il_sampler *sampler,
-                uint32_t max_depth, il_pt_strategy strategy);
+                const il_vec2 *u_drawn, uint32_t max_depth, il_pt_strategy strategy);
 static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
 {
     if (!occluded)

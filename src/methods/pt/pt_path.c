@@ -45,7 +45,7 @@ void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir)
 }
 
 bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sampler *smp,
-                uint32_t max_depth, il_pt_strategy strategy)
+                const il_vec2 *u_drawn, uint32_t max_depth, il_pt_strategy strategy)
 {
     const il_tracer *tr = s->tracer;
     st->shadow = false;
@@ -91,8 +91,12 @@ bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sample
      * whatever happens, so a vertex's numbers never depend on branches
      * (the roulette number, drawn last, only from the fourth bounce on).
      * The light choice and the BSDF lobe choice share one pair. */
-    il_vec2 u[3];
-    il_sampler_2d_n(smp, u, 3);
+    il_vec2 u_own[3];
+    const il_vec2 *u = u_drawn;
+    if (!u) {
+        il_sampler_2d_n(smp, u_own, 3);
+        u = u_own;
+    }
     il_vec2 u_choice = u[0], u_light = u[1], u_bsdf = u[2];
     float u_select = u_choice.x, u_lobe = u_choice.y;
 
@@ -158,7 +162,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
     for (;;) {
         il_hit hit;
         bool found = il_trace_closest(tr, &st.ray, &hit);
-        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, max_depth, strategy);
+        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, NULL, max_depth, strategy);
         if (st.shadow)
             il_pt_shadow_result(&st, il_trace_occluded(tr, &st.shadow_ray));
         if (!more)

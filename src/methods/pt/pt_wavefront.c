@@ -9,40 +9,26 @@
  *
  * Every path runs exactly the estimator of il_pt_radiance (il_pt_step), with
  * the same sample numbers and the same order of additions to its radiance,
- * and the film receives a pixel's samples in increasing index, as in the
- * shared camera pass (methods/camera_pass.c), whose tiles, passes, progress
- * reports, time limit and treatment of NaN samples this follows exactly: so
- * the film is bit-identical to il_camera_pass with il_pt_radiance, and the
- * same with 1 or N threads. */
-#include <omp.h>
-#include <stdlib.h>
-#include <string.h>
-
-#include "core/error.h"
+ * and the film receives a pixel's samples in increasing index: the shared
+ * camera pass (methods/camera_pass.c) runs the tiles, passes, progress
+ * reports, time limit and treatment of NaN samples, and this file only the
+ * work of a tile (il_camera_pass_tiles), so the film is bit-identical to
+ * il_camera_pass with il_pt_radiance, and the same with 1 or N threads. */
 #include "methods/camera_pass.h"
 #include "methods/pt/pt.h"
-#include "scene/camera.h"
 
-#define PT_TILE 16            /* as camera_pass.c */
-#define PT_PASS_SAMPLES 65536u
-#define PT_PASS_MAX_SPP 64u
 /* Paths advanced together: one 16x16 tile at one sample per pixel. */
 #define PT_WAVE 256u
 
-typedef struct pt_job {
+typedef struct pt_method {
     const il_scene *scene;
-    il_film *film;
-    il_camera cam;
-    uint32_t width, height, tiles_x;
-    uint64_t seed;
-    il_sampler_type sampler;
-    il_filter_type filter;
     uint32_t max_depth;
     il_pt_strategy strategy;
-} pt_job;
+} pt_method;
 
 /* One wave: up to PT_WAVE paths with their samplers and pixels, and the
- * gather buffers for the stream calls. */
+ * gather buffers for the stream calls; one per thread (about 70 KB), the
+ * camera pass's scratch memory. */
 typedef struct pt_wave {
     il_pt_state st[PT_WAVE];
     il_sampler smp[PT_WAVE];
@@ -51,12 +37,14 @@ typedef struct pt_wave {
     il_ray rays[PT_WAVE];
     il_hit hits[PT_WAVE];
     bool occluded[PT_WAVE];
+    uint32_t drawing[PT_WAVE];    /* the paths that draw samples at this vertex */
+    il_vec2 u[PT_WAVE][3];        /* their three 2D samples, in that order */
 } pt_wave;
 
 /* Runs paths 0..n-1 of the wave to their ends. */
-static void run_wave(const pt_job *job, pt_wave *w, uint32_t n)
+static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
 {
-    const il_tracer *tr = job->scene->tracer;
+    const il_tracer *tr = pm->scene->tracer;
     uint32_t num_active = n;
     for (uint32_t j = 0; j < n; j++)
         w->active[j] = j;
@@ -65,12 +53,23 @@ static void run_wave(const pt_job *job, pt_wave *w, uint32_t n)
             w->rays[a] = w->st[w->active[a]].ray;
         il_trace_closest_n(tr, w->rays, w->hits, num_active);
 
-        uint32_t num_shadow = 0, still = 0;
+        /* The vertex's samples of every path that will draw them (a hit
+         * below the maximum depth: see il_pt_step), all drawn together. */
+        uint32_t num_drawing = 0;
+        for (uint32_t a = 0; a < num_active; a++) {
+            uint32_t j = w->active[a];
+            if (w->hits[a].mesh != IL_HIT_NONE && w->st[j].depth < pm->max_depth)
+                w->drawing[num_drawing++] = j;
+        }
+        il_sampler_2d_gather(w->smp, w->drawing, num_drawing, 3, &w->u[0][0]);
+
+        uint32_t num_shadow = 0, still = 0, d = 0;
         for (uint32_t a = 0; a < num_active; a++) {
             uint32_t j = w->active[a];
             const il_hit *hit = w->hits[a].mesh != IL_HIT_NONE ? &w->hits[a] : NULL;
-            bool more = il_pt_step(job->scene, &w->st[j], hit, &w->smp[j], job->max_depth,
-                                   job->strategy);
+            const il_vec2 *u = d < num_drawing && w->drawing[d] == j ? w->u[d++] : NULL;
+            bool more = il_pt_step(pm->scene, &w->st[j], hit, &w->smp[j], u, pm->max_depth,
+                                   pm->strategy);
             if (w->st[j].shadow) {
                 w->shadowed[num_shadow] = j;
                 w->rays[num_shadow++] = w->st[j].shadow_ray;
@@ -88,45 +87,36 @@ static void run_wave(const pt_job *job, pt_wave *w, uint32_t n)
     }
 }
 
-/* Samples first..first+count-1 of every pixel of the tile, in waves taken
- * in the order camera_pass.c visits them (pixel by pixel, samples in
- * increasing index), and added to the film in that order. */
-static void render_tile(const pt_job *job, pt_wave *w, uint32_t tile, uint32_t first,
-                        uint32_t count, uint64_t *rays, uint64_t *bad)
+/* The tile's samples in waves taken in the order the camera pass wants them
+ * (pixel by pixel, samples in increasing index), and added to the film in
+ * that order. */
+static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
-    uint32_t x0 = (tile % job->tiles_x) * PT_TILE, y0 = (tile / job->tiles_x) * PT_TILE;
-    uint32_t x1 = x0 + PT_TILE < job->width ? x0 + PT_TILE : job->width;
-    uint32_t y1 = y0 + PT_TILE < job->height ? y0 + PT_TILE : job->height;
-    uint32_t x = x0, y = y0, i = first;
-    while (y < y1) {
+    const pt_method *pm = method;
+    pt_wave *w = tile->scratch;
+    uint32_t first = tile->first, end = tile->first + tile->count;
+    uint32_t x = tile->x0, y = tile->y0, i = first;
+    while (y < tile->y1) {
         /* Fill a wave. */
         uint32_t n = 0;
-        while (n < PT_WAVE && y < y1) {
-            il_sampler *smp = &w->smp[n];
-            il_sampler_start(smp, job->sampler, job->seed, (uint64_t)y * job->width + x, i);
-            il_vec2 off = il_filter_offset(job->filter, il_sampler_2d(smp));
-            il_vec3 dir = il_camera_ray_dir(&job->cam, (float)x + off.x, (float)y + off.y);
-            il_pt_begin(&w->st[n], job->cam.position, dir);
+        while (n < PT_WAVE && y < tile->y1) {
+            il_vec3 dir = il_camera_sample(ctx, x, y, i, &w->smp[n]);
+            il_pt_begin(&w->st[n], ctx->cam.position, dir);
             w->px[n] = x;
             w->py[n] = y;
             n++;
-            if (++i == first + count) {
+            if (++i == end) {
                 i = first;
-                if (++x == x1) {
-                    x = x0;
+                if (++x == tile->x1) {
+                    x = tile->x0;
                     y++;
                 }
             }
         }
-        run_wave(job, w, n);
+        run_wave(pm, w, n);
         for (uint32_t j = 0; j < n; j++) {
-            *rays += w->st[j].rays;
-            /* A NaN or Inf would poison the pixel for good: drop the sample. */
-            if (!v3_is_finite(w->st[j].L)) {
-                (*bad)++;
-                continue;
-            }
-            il_film_add_sample(job->film, w->px[j], w->py[j], w->st[j].L, 1.0f);
+            tile->rays += w->st[j].rays;
+            il_camera_tile_add(ctx, tile, w->px[j], w->py[j], w->st[j].L);
         }
     }
 }
@@ -135,68 +125,6 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
                                uint32_t max_depth, il_pt_strategy strategy,
                                il_camera_pass_result *out, il_error *err)
 {
-    pt_job job;
-    memset(&job, 0, sizeof job);
-    job.scene = scene;
-    job.film = film;
-    job.width = il_film_width(film);
-    job.height = il_film_height(film);
-    job.tiles_x = (job.width + PT_TILE - 1) / PT_TILE;
-    job.seed = desc->seed;
-    job.sampler = desc->sampler;
-    job.filter = desc->filter;
-    job.max_depth = max_depth;
-    job.strategy = strategy;
-    il_camera_init(&job.cam, &scene->camera.desc, job.width, job.height);
-
-    bool timed = desc->time_limit > 0.0;
-    uint32_t spp = desc->spp ? desc->spp : (timed ? UINT32_MAX : 16u);
-    int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
-    uint64_t pixels = (uint64_t)job.width * job.height;
-    uint32_t tiles = job.tiles_x * ((job.height + PT_TILE - 1) / PT_TILE);
-    uint32_t per_pass = pixels ? (uint32_t)(PT_PASS_SAMPLES / pixels) : 1u;
-    per_pass = per_pass < 1 ? 1 : (per_pass > PT_PASS_MAX_SPP ? PT_PASS_MAX_SPP : per_pass);
-
-    /* One wave per thread (about 70 KB each), allocated up front. */
-    pt_wave *waves = il_malloc((size_t)threads * sizeof *waves, err);
-    if (!waves)
-        return IL_ERR_MEMORY;
-
-    il_film_clear(film);
-    double t0 = omp_get_wtime(), seconds = 0.0;
-    uint64_t rays = 0, bad = 0;
-    uint32_t done = 0;
-    while (done < spp) {
-        uint32_t count = spp - done < per_pass ? spp - done : per_pass;
-        uint64_t pass_rays = 0, pass_bad = 0;
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : pass_rays, pass_bad)
-        for (uint32_t t = 0; t < tiles; t++)
-            render_tile(&job, &waves[omp_get_thread_num()], t, done, count, &pass_rays, &pass_bad);
-        done += count;
-        rays += pass_rays;
-        bad += pass_bad;
-        seconds = omp_get_wtime() - t0;
-        if (desc->progress) {
-            il_render_progress p = {
-                .passes_done = done,
-                .passes_total = spp == UINT32_MAX ? 0 : spp,
-                .seconds = seconds,
-                .time_limit = desc->time_limit,
-                .rays = rays,
-                .film = film,
-            };
-            /* Stopping early is not an error: the film holds `done` complete
-             * samples per pixel and the result says so. */
-            if (!desc->progress(&p, desc->progress_user))
-                break;
-        }
-        if (timed && seconds >= desc->time_limit)
-            break;
-    }
-    out->spp = done;
-    out->rays = rays;
-    out->nonfinite_samples = bad;
-    out->seconds = seconds;
-    free(waves);
-    return IL_OK;
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy};
+    return il_camera_pass_tiles(scene, film, desc, render_tile, &pm, sizeof(pt_wave), out, err);
 }
