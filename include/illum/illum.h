@@ -357,8 +357,9 @@ typedef struct il_radiosity_stats {
  * epsilons are relative, so rescaling the scene or its lights changes
  * nothing (docs/hierarchical-radiosity.md maps them to SPLASH-2's values). */
 typedef struct il_hr_desc {
-    float bf_eps;              /* refine a link while F * B * V / B_max exceeds this;
-                                  0 means 0.015 */
+    float bf_eps;              /* refine a link while F * B * V / B_ref exceeds this,
+                                  B_ref the scene's mean emitted radiance
+                                  (sum A Le / sum A); 0 means 0.015 */
     float area_eps;            /* ... and the larger element's area exceeds this
                                   fraction of the scene's bounding-box diagonal
                                   squared; 0 means 2000 / 1700^2 (SPLASH-2's room) */

@@ -12,8 +12,9 @@
 
 const char cli_hr_help[] =
     "hierarchical radiosity options (--method hr; docs/hierarchical-radiosity.md):\n"
-    "  --bf-eps X             refine a link while F * B * V / B_max > X, 1e-7 to 1\n"
-    "                         (default 0.015, SPLASH-2's BF epsilon)\n"
+    "  --bf-eps X             refine a link while F * B * V / B_ref > X, B_ref the\n"
+    "                         scene's mean emitted radiance, 1e-7 to 1 (default\n"
+    "                         0.015, SPLASH-2's BF epsilon)\n"
     "  --area-eps X           ... and the larger element's area > X * (the scene's\n"
     "                         bounding-box diagonal)^2, 1e-9 to 1 (default 6.92e-4,\n"
     "                         SPLASH-2's 2000 in a room about 1700 units wide)\n"

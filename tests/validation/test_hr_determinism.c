@@ -21,8 +21,8 @@ static void collect(const il_hr_elem *e, void *user)
 
 static il_hr_stats solve(const il_scene *s, int threads, leaves *out)
 {
-    /* Finer than the default, so thousands of links are split on both sides. */
-    il_hr_desc hd = {.bf_eps = 0.002f};
+    /* The defaults: thousands of links are split on both sides. */
+    il_hr_desc hd = {0};
     il_render_desc rd = {.method = IL_METHOD_HR, .threads = threads, .seed = 11, .hr = &hd};
     hr_case c;
     CHECK_OK(hr_case_run(s, &rd, &c), &g_err);
@@ -67,7 +67,7 @@ int main(void)
 
     /* The whole method through il_bake: the same vertices and radiances. */
     il_bake_result *r1 = NULL, *r2 = NULL;
-    il_hr_desc hd = {.bf_eps = 0.002f};
+    il_hr_desc hd = {0};
     il_render_desc rd = {.method = IL_METHOD_HR, .threads = 1, .seed = 11, .hr = &hd};
     CHECK_OK(il_bake(s, &rd, &r1, &g_err), &g_err);
     rd.threads = 2;

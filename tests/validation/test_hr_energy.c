@@ -78,10 +78,8 @@ static void check_balance(bool open)
 {
     il_scene *s = hr_room(open, true);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
-    /* bf_eps 0.001: at the default 0.015 the open room is 3% short (links
-     * to bright, unevenly lit sources left too coarse); the gap closes as
-     * bf_eps shrinks (2% at 0.002, 0.9% at 0.001). */
-    il_hr_desc hd = {.bf_eps = 0.001f, .energy_eps = 1e-6f};
+    /* The default epsilons (balance within 0.8% both ways). */
+    il_hr_desc hd = {.energy_eps = 1e-6f};
     il_render_desc rd = {.method = IL_METHOD_HR, .threads = 2, .hr = &hd};
     hr_case c;
     CHECK_OK(hr_case_run(s, &rd, &c), &g_err);

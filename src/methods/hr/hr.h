@@ -65,6 +65,7 @@ typedef struct il_hr_link {
     float ff;                  /* F_rs: form factor from the receiver to src */
     float err_ff;              /* the refinement oracle's form-factor bound */
     float vis;                 /* visible fraction in [0, 1] */
+    float vis_bound;           /* the oracle's visibility: an upper bound of vis */
     struct il_hr_link *next;
 } il_hr_link;
 
@@ -79,6 +80,7 @@ struct il_hr_elem {
     il_vec3 rho;               /* the root patch's reflectance */
     il_vec3 emit;              /* Le + rho/pi * direct irradiance (delta lights, sky) */
     il_vec3 radiance;          /* B: outgoing radiance (leaves), area mean (inner) */
+    float exposure;            /* fraction of the area not buried in a solid (hr_exposure.c) */
     il_vec3 gathered;          /* H: sum over own links of F V B_src (not times rho) */
     il_vec3 incoming;          /* leaves: H pushed down from all ancestors and own */
     il_hr_link *links, *links_tail; /* as receiver; touched by the root's task only */
@@ -124,7 +126,9 @@ typedef struct il_hr_solver {
     il_hr_pool *pools;              /* one per thread */
     float diag;                     /* scene bounding-box diagonal */
     float area_min;                 /* area_eps * diag^2 */
-    float b_max;                    /* largest emitted luminance (refinement scale) */
+    float b_max;                    /* largest emitted luminance (0: nothing to solve) */
+    float b_ref;                    /* mean emitted luminance sum A Le / sum A: the
+                                       refinement's radiance scale (hr_refine.c) */
     float plane_eps;                /* distance below which a point is on a plane */
     bool delta_lights, sky;         /* direct light to add to the leaves' emission */
     uint32_t *order;                /* roots by decreasing work (scheduling only) */
@@ -144,8 +148,21 @@ static inline il_hr_elem *il_hr_children_get(const il_hr_elem *e)
 {
     return atomic_load_explicit(&((il_hr_elem *)e)->children, memory_order_acquire);
 }
-/* Fills a root element from mesh patch i. */
-void il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out);
+/* Fills a root element from mesh patch i; returns the rays it cast. */
+uint32_t il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out);
+/* The point at (u, v) of the unit square mapped onto the element (bilinear
+ * for quads, the area-preserving square-to-triangle map for triangles). */
+il_vec3 il_hr_elem_point(const il_hr_elem *e, float u, float v);
+
+/* The fraction of e's area not buried inside a solid, by probe rays;
+ * *rays_cast: how many it cast. */
+float il_hr_exposure(const il_hr_solver *s, const il_hr_elem *e, uint32_t *rays_cast);
+/* The mean radiance over e's exposed part: what links gather from e and
+ * what the output shows (hr_exposure.c explains why). */
+static inline il_vec3 il_hr_exposed_radiance(const il_hr_elem *e)
+{
+    return e->exposure > 0.0f ? v3_scale(e->radiance, 1.0f / e->exposure) : v3s(0.0f);
+}
 
 /* A new link (r gathers from src) with its form factor and visibility;
  * NULL when out of memory. */

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "methods/hr/hr.h"
 #include "methods/patch_direct.h"
 
@@ -51,7 +52,28 @@ static il_vec3 emission(const il_hr_solver *s, const il_hr_elem *e)
     return le;
 }
 
-void il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out)
+il_vec3 il_hr_elem_point(const il_hr_elem *e, float u, float v)
+{
+    const il_vec3 *c = e->corners;
+    if (e->num_corners == 4)
+        return v3_add(v3_add(v3_scale(c[0], (1 - u) * (1 - v)), v3_scale(c[1], u * (1 - v))),
+                      v3_add(v3_scale(c[2], u * v), v3_scale(c[3], (1 - u) * v)));
+    il_vec2 b = il_sample_triangle(v2(u, v));
+    return v3_add(v3_add(v3_scale(c[0], 1.0f - b.x - b.y), v3_scale(c[1], b.x)),
+                  v3_scale(c[2], b.y));
+}
+
+/* Emitters count as fully exposed: their emission is per unit of their
+ * whole area, and a lamp half inside a solid is a modelling oddity. */
+static uint32_t set_exposure(const il_hr_solver *s, const il_hr_elem *parent, il_hr_elem *e)
+{
+    uint32_t rays = 0;
+    bool emitter = !v3_is_zero(s->mesh->patches[e->root].emission);
+    e->exposure = emitter || (parent && parent->exposure >= 1.0f) ? 1.0f : il_hr_exposure(s, e, &rays);
+    return rays;
+}
+
+uint32_t il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out)
 {
     const il_patch *p = &s->mesh->patches[i];
     memset(out, 0, sizeof *out);
@@ -67,10 +89,12 @@ void il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out)
     out->emit = emission(s, out);
     out->radiance = out->emit;
     atomic_init(&out->children, NULL);
+    return set_exposure(s, NULL, out);
 }
 
-static void fill_child(const il_hr_solver *s, const il_hr_elem *parent, uint32_t k,
-                       const il_vec3 *corners, il_hr_elem *c)
+/* Returns the rays it cast. */
+static uint32_t fill_child(const il_hr_solver *s, const il_hr_elem *parent, uint32_t k,
+                           const il_vec3 *corners, il_hr_elem *c)
 {
     memset(c, 0, sizeof *c);
     c->num_corners = parent->num_corners;
@@ -88,6 +112,7 @@ static void fill_child(const il_hr_solver *s, const il_hr_elem *parent, uint32_t
     c->incoming = parent->incoming;
     c->parent = (il_hr_elem *)parent;
     atomic_init(&c->children, NULL);
+    return set_exposure(s, parent, c);
 }
 
 il_hr_elem *il_hr_children(const il_hr_solver *s, il_hr_elem *e, il_hr_pool *pool)
@@ -99,11 +124,12 @@ il_hr_elem *il_hr_children(const il_hr_solver *s, il_hr_elem *e, il_hr_pool *poo
     if (!block)
         return NULL;
     const il_vec3 *v = e->corners;
+    uint32_t rays = 0;
     if (e->num_corners == 3) {
         il_vec3 m0 = mid(v[0], v[1]), m1 = mid(v[1], v[2]), m2 = mid(v[2], v[0]);
         const il_vec3 q[4][3] = {{v[0], m0, m2}, {m0, v[1], m1}, {m2, m1, v[2]}, {m0, m1, m2}};
         for (uint32_t k = 0; k < 4; k++)
-            fill_child(s, e, k, q[k], &block[k]);
+            rays += fill_child(s, e, k, q[k], &block[k]);
     } else {
         il_vec3 m0 = mid(v[0], v[1]), m1 = mid(v[1], v[2]), m2 = mid(v[2], v[3]),
                 m3 = mid(v[3], v[0]);
@@ -111,12 +137,13 @@ il_hr_elem *il_hr_children(const il_hr_solver *s, il_hr_elem *e, il_hr_pool *poo
         const il_vec3 q[4][4] = {
             {v[0], m0, c, m3}, {m0, v[1], m1, c}, {c, m1, v[2], m2}, {m3, c, m2, v[3]}};
         for (uint32_t k = 0; k < 4; k++)
-            fill_child(s, e, k, q[k], &block[k]);
+            rays += fill_child(s, e, k, q[k], &block[k]);
     }
     il_hr_elem *expected = NULL;
     if (atomic_compare_exchange_strong_explicit(&e->children, &expected, block,
                                                 memory_order_acq_rel, memory_order_acquire)) {
         pool->elements += 4;
+        pool->vis_rays += rays; /* counted by the winner only: deterministic totals */
         return block;
     }
     il_hr_pool_unget4(pool); /* another task won: its children are the same */

@@ -1,22 +1,21 @@
 /* Links (hr.h): facing test, form-factor estimate and visibility.
  *
- * Form factor (the estimate gathered with): F_rs = the mean over the
- * FF_GRID x FF_GRID midpoints of the receiver's parameter square of the
- * unoccluded form factor from a differential area there to the
- * source polygon by Lambert's contour integral (Cohen & Wallace 1993,
- * eq. 4.14; methods/ff_analytic.c); a point behind the source's plane
- * sees its back and counts 0 (sources emit from their front only).  Each
- * point's value is exact and bounded by 1, and a point's form factors to
- * non-overlapping sources sum to at most 1, so gathering never creates
- * energy; averaging over the receiver keeps pairs that straddle each
- * other's plane (a block standing on a floor) from being lost when the
- * receiver's centroid happens to lie behind the source.
+ * Form factor (the estimate gathered with): the mean over the FF_GRID x
+ * FF_GRID midpoints of one element's parameter square of the unoccluded
+ * form factor from a differential area there to the other element's
+ * polygon by Lambert's contour integral (Cohen & Wallace 1993, eq. 4.14;
+ * methods/ff_analytic.c), which clips the polygon to the point's front
+ * half-space; a point behind the other's plane counts 0 (elements emit
+ * and receive on their front only).  The integration runs over the
+ * element that lies wholly in front of the other's plane, or else the
+ * smaller one, and F_sr becomes F_rs by reciprocity (A_r F_rs = A_s F_sr).
+ * Each point's value is exact and bounded by 1, so a point's form factors
+ * to non-overlapping sources sum to at most 1.
  *
  * Refinement oracle (Hanrahan et al. 1991, section 4: the estimate's error
  * grows with the elements' size as seen from each other): err_ff =
- * max(F_rs, the largest of the point values, F_sr A_s / A_r), the last
- * the point estimate from the source's centroid turned into F_rs by
- * reciprocity (A_r F_rs = A_s F_sr).  They agree when the elements are small
+ * max(F_rs, the largest point value, the point estimate from the other
+ * element's centroid), all as F_rs.  They agree when the elements are small
  * compared with their distance; where they differ the link needs splitting.
  *
  * Visibility (Hanrahan et al. 1991, section 5; SPLASH-2's 16 rays): vis_rays
@@ -24,7 +23,17 @@
  * grid, the source's strata in reverse order), through the patch mesh's
  * tracer: a ray is blocked when anything lies between the lifted end
  * points.  Pairs of points that do not face each other (the elements
- * straddle each other's plane) are not counted.  V = unblocked / counted.
+ * straddle each other's plane) are not counted but drawn again, up to
+ * VIS_ATTEMPTS n draws.  V = unblocked / counted.
+ * The refinement oracle does not use V itself but an upper bound of the
+ * visibility the link's sub-links can have: 1 when any ray passed (a
+ * partly hidden pair has fully visible parts: the shadow's edge must be
+ * resolved as if nothing blocked), and when every ray was blocked the 95%
+ * upper confidence bound 1 - 0.05^(1/n) (about 3/n, the "rule of three"):
+ * n blocked rays do not prove a pair hidden, and a link that is never split
+ * loses the light reaching the part the rays missed (a quarter of the
+ * Cornell box's floor, in the blocks' shadow but for a corner, lost its
+ * direct light that way).
  * Random numbers keyed by (seed, receiver id, source id). */
 #include <math.h>
 
@@ -34,6 +43,7 @@
 #include "methods/hr/hr.h"
 
 #define RAY_BATCH 64
+#define VIS_ATTEMPTS 4
 #define FF_GRID 2 /* form-factor points per receiver: FF_GRID^2 */
 
 static float plane_dist(const il_hr_elem *e, il_vec3 p) { return v3_dot(e->normal, v3_sub(p, e->center)); }
@@ -48,20 +58,8 @@ bool il_hr_facing(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *
     return ab > s->plane_eps && ba > s->plane_eps;
 }
 
-/* The point at (u, v) of the unit square mapped onto the element. */
-static il_vec3 elem_point(const il_hr_elem *e, float u, float v)
-{
-    const il_vec3 *c = e->corners;
-    if (e->num_corners == 4)
-        return v3_add(v3_add(v3_scale(c[0], (1 - u) * (1 - v)), v3_scale(c[1], u * (1 - v))),
-                      v3_add(v3_scale(c[2], u * v), v3_scale(c[3], (1 - u) * v)));
-    il_vec2 b = il_sample_triangle(v2(u, v));
-    return v3_add(v3_add(v3_scale(c[0], 1.0f - b.x - b.y), v3_scale(c[1], b.x)),
-                  v3_scale(c[2], b.y));
-}
-
 static float visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
-                        const il_hr_elem *src)
+                        const il_hr_elem *src, float *bound)
 {
     uint32_t n = s->set.vis_rays, m = 1;
     while (m * m < n)
@@ -70,30 +68,92 @@ static float visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_ele
     const il_tracer *tr = s->mesh->tracer;
     il_ray rays[RAY_BATCH];
     bool blocked[RAY_BATCH];
-    uint32_t counted = 0, open = 0;
-    for (uint32_t k0 = 0; k0 < n; k0 += RAY_BATCH) {
-        uint32_t nb = 0;
-        for (uint32_t k = k0; k < n && k < k0 + RAY_BATCH; k++) {
-            uint32_t ks = n - 1 - k;
-            float u0 = ((float)(k % m) + il_pcg32_float(&rng)) / (float)m;
-            float v0 = ((float)(k / m) + il_pcg32_float(&rng)) / (float)m;
-            float u1 = ((float)(ks % m) + il_pcg32_float(&rng)) / (float)m;
-            float v1 = ((float)(ks / m) + il_pcg32_float(&rng)) / (float)m;
-            il_vec3 p = elem_point(r, u0, v0), q = elem_point(src, u1, v1);
-            il_vec3 d = v3_sub(q, p);
-            if (!(v3_dot(d, r->normal) > 0.0f && v3_dot(d, src->normal) < 0.0f))
-                continue;
-            rays[nb++] = il_shadow_ray(tr, p, r->normal, q, src->normal);
-        }
-        if (nb == 0)
+    uint32_t counted = 0, open = 0, nb = 0;
+    /* Pairs that do not face each other are drawn again, up to
+     * VIS_ATTEMPTS n draws in all, so that elements which straddle each
+     * other's plane (a block's side and the floor it stands on) still get
+     * n rays through the part that matters. */
+    for (uint32_t a = 0; a < VIS_ATTEMPTS * n && counted < n; a++) {
+        uint32_t k = a % n, ks = n - 1 - k;
+        float u0 = ((float)(k % m) + il_pcg32_float(&rng)) / (float)m;
+        float v0 = ((float)(k / m) + il_pcg32_float(&rng)) / (float)m;
+        float u1 = ((float)(ks % m) + il_pcg32_float(&rng)) / (float)m;
+        float v1 = ((float)(ks / m) + il_pcg32_float(&rng)) / (float)m;
+        il_vec3 p = il_hr_elem_point(r, u0, v0), q = il_hr_elem_point(src, u1, v1);
+        il_vec3 d = v3_sub(q, p);
+        if (!(v3_dot(d, r->normal) > 0.0f && v3_dot(d, src->normal) < 0.0f))
             continue;
-        il_trace_occluded_n(tr, rays, blocked, nb);
-        pool->vis_rays += nb;
-        counted += nb;
-        for (uint32_t k = 0; k < nb; k++)
-            open += !blocked[k];
+        rays[nb++] = il_shadow_ray(tr, p, r->normal, q, src->normal);
+        counted++;
+        if (nb == RAY_BATCH || counted == n) {
+            il_trace_occluded_n(tr, rays, blocked, nb);
+            for (uint32_t k2 = 0; k2 < nb; k2++)
+                open += !blocked[k2];
+            nb = 0;
+        }
     }
+    if (nb > 0) {
+        il_trace_occluded_n(tr, rays, blocked, nb);
+        for (uint32_t k2 = 0; k2 < nb; k2++)
+            open += !blocked[k2];
+    }
+    pool->vis_rays += counted;
+    /* No facing pair found: nothing is known, so the oracle assumes the
+     * worst (bound 1) and the link gathers nothing until split. */
+    *bound = counted == 0 || open > 0 ? 1.0f : 1.0f - powf(0.05f, 1.0f / (float)counted);
     return counted ? (float)open / (float)counted : 0.0f;
+}
+
+/* The mean and the largest of the unoccluded point form factors from the
+ * FF_GRID x FF_GRID midpoints of a's parameter square (a bilinear map for
+ * quads, the area-preserving square-to-triangle map for triangles) to the
+ * polygon b; a point behind b's plane counts 0. */
+static void ff_from_points(const il_hr_elem *a, const il_hr_elem *b, double *mean, double *max)
+{
+    const int g = FF_GRID;
+    double sum = 0.0, top = 0.0;
+    for (int k = 0; k < g * g; k++) {
+        il_vec3 p = il_hr_elem_point(a, ((float)(k % g) + 0.5f) / g, ((float)(k / g) + 0.5f) / g);
+        double f = plane_dist(b, p) > 0.0f
+                       ? il_ff_point_polygon(p, a->normal, b->corners, b->num_corners)
+                       : 0.0;
+        sum += f;
+        top = f > top ? f : top;
+    }
+    *mean = sum / (g * g);
+    *max = top;
+}
+
+
+/* The point form factor from a's centroid to b (0 behind b's plane). */
+static double ff_from_center(const il_hr_elem *a, const il_hr_elem *b)
+{
+    return plane_dist(b, a->center) > 0.0f
+               ? il_ff_point_polygon(a->center, a->normal, b->corners, b->num_corners)
+               : 0.0;
+}
+
+/* Whether a lies wholly in front of b's plane (no point of a behind it). */
+static bool in_front(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *b)
+{
+    for (uint32_t k = 0; k < a->num_corners; k++)
+        if (plane_dist(b, a->corners[k]) < -s->plane_eps)
+            return false;
+    return true;
+}
+
+/* Which element to integrate over: one that lies wholly in front of the
+ * other's plane, so that no sample point falls behind it (the points of a
+ * floor element that a block's side cuts may all lie behind the side while
+ * a sliver of it faces the side: integrated over the floor element, the
+ * link would get F = 0); if both or neither do, the smaller one, where
+ * points sample the integrand most finely relative to the distance. */
+static bool integrate_over_receiver(const il_hr_solver *s, const il_hr_elem *r, const il_hr_elem *src)
+{
+    bool r_front = in_front(s, r, src), s_front = in_front(s, src, r);
+    if (r_front != s_front)
+        return r_front;
+    return r->area <= src->area;
 }
 
 il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
@@ -102,29 +162,27 @@ il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr
     il_hr_link *l = il_hr_pool_link(pool);
     if (!l)
         return NULL;
-    /* FF_GRID x FF_GRID midpoints of the receiver's parameter square (a
-     * bilinear map for quads, the area-preserving square-to-triangle map
-     * for triangles), equal weights. */
-    double f_rs = 0.0, f_max = 0.0;
-    for (int k = 0; k < FF_GRID * FF_GRID; k++) {
-        il_vec3 p = elem_point(r, ((float)(k % FF_GRID) + 0.5f) / FF_GRID,
-                               ((float)(k / FF_GRID) + 0.5f) / FF_GRID);
-        double f = plane_dist(src, p) > 0.0f
-                       ? il_ff_point_polygon(p, r->normal, src->corners, src->num_corners)
-                       : 0.0;
-        f_rs += f;
-        f_max = f > f_max ? f : f_max;
+    /* Integrate over one element with the exact point form factor to the
+     * other; turn F_sr into F_rs by reciprocity (A_r F_rs = A_s F_sr). */
+    double mean, max, other, f_rs;
+    if (integrate_over_receiver(s, r, src)) {
+        ff_from_points(r, src, &mean, &max);
+        f_rs = mean;
+        other = ff_from_center(src, r) * (double)src->area / (double)r->area;
+    } else {
+        double to_r = (double)src->area / (double)r->area;
+        ff_from_points(src, r, &mean, &max);
+        f_rs = mean * to_r;
+        max *= to_r;
+        other = ff_from_center(r, src);
     }
-    f_rs /= FF_GRID * FF_GRID;
-    double f_sr = plane_dist(r, src->center) > 0.0f
-                      ? il_ff_point_polygon(src->center, src->normal, r->corners, r->num_corners)
-                      : 0.0;
-    double bound = f_sr * (double)src->area / (double)r->area;
-    bound = bound > f_max ? bound : f_max;
+    double bound = other > max ? other : max;
     l->src = src;
     l->ff = (float)f_rs;
     l->err_ff = (float)(bound > f_rs ? bound : f_rs);
-    l->vis = l->err_ff > 0.0f ? visibility(s, pool, r, src) : 0.0f;
+    l->vis = l->vis_bound = 0.0f;
+    if (l->err_ff > 0.0f)
+        l->vis = visibility(s, pool, r, src, &l->vis_bound);
     l->next = NULL;
     pool->links_made++;
     return l;

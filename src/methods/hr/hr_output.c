@@ -72,7 +72,7 @@ il_status il_hr_output_mesh(const il_hr_solver *s, il_patch_mesh **mesh_out,
         st = IL_ERR_MEMORY;
     if (st == IL_OK)
         for (uint32_t i = 0; i < n; i++)
-            rad[i] = elems[i]->radiance;
+            rad[i] = il_hr_exposed_radiance(elems[i]);
     free(split);
     free(elems);
     if (st != IL_OK) {

@@ -2,13 +2,15 @@
  *
  * Refinement (Hanrahan, Salzman & Aupperle 1991, section 4; SPLASH-2's
  * "BF refinement"): a link r <- s is split while
- *     err_ff * lum(B_s) * V / B_max > bf_eps        (B_max: the largest
- *                                                    emitted luminance)
- * and the larger element's area exceeds area_eps * diag^2.  The larger of
- * the two is split: a receiver-side split replaces the link by links from
- * each child of r (that faces s) to s, a source-side split by links from r
- * to each child of s (that faces r); the new links are refined in turn.
- * A fully occluded link (V = 0) is never split.
+ *     err_ff * lum(B_s / exposure_s) * V / B_ref > bf_eps
+ * (B_ref: the scene's mean emitted radiance, sum A lum(Le) / sum A, the
+ * brightness the surfaces would have if the emitted power were spread over
+ * all of them; V: the link's upper bound of visibility, hr_link.c) and the
+ * larger element's area exceeds area_eps * diag^2.  The larger of the two
+ * is split: a receiver-side split replaces the link by links from each
+ * child of r (that faces s) to s, a source-side split by links from r to
+ * each child of s (that faces r); the new links are refined in turn.  A
+ * link no ray of which could pass (V bound 0) is never split.
  *
  * Only the task of r's root touches r's link list, so the order of every
  * list is fixed; children are shared through il_hr_children (race-free). */
@@ -27,10 +29,10 @@ static void append(il_hr_elem *r, il_hr_link *l)
 
 static bool wants_split(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l)
 {
-    if (!(l->vis > 0.0f))
+    if (!(l->vis_bound > 0.0f))
         return false;
-    float bf = l->err_ff * il_luminance(l->src->radiance) * l->vis;
-    if (!(bf > s->set.bf_eps * s->b_max))
+    float bf = l->err_ff * il_luminance(il_hr_exposed_radiance(l->src)) * l->vis_bound;
+    if (!(bf > s->set.bf_eps * s->b_ref))
         return false;
     const il_hr_elem *big = r->area >= l->src->area ? r : l->src;
     return big->area > s->area_min && big->level < IL_HR_MAX_LEVEL;
@@ -84,9 +86,10 @@ void il_hr_gather_root(il_hr_elem *e)
     float h[3] = {0.0f, 0.0f, 0.0f};
     for (const il_hr_link *l = e->links; l; l = l->next) {
         float w = l->ff * l->vis;
-        h[0] += w * l->src->radiance.x;
-        h[1] += w * l->src->radiance.y;
-        h[2] += w * l->src->radiance.z;
+        il_vec3 b = il_hr_exposed_radiance(l->src);
+        h[0] += w * b.x;
+        h[1] += w * b.y;
+        h[2] += w * b.z;
     }
     e->gathered = v3(h[0], h[1], h[2]);
     il_hr_elem *kids = il_hr_children_get(e);
@@ -96,8 +99,8 @@ void il_hr_gather_root(il_hr_elem *e)
 }
 
 /* Push (Hanrahan et al. 1991, section 4.3): what an element gathered
- * reaches all its descendants; pull: an inner element's radiance is the
- * area-weighted mean of its children's. */
+ * reaches all its descendants; pull: an inner element's radiance (and
+ * exposure) is the area-weighted mean of its children's. */
 static void push_pull(il_hr_elem *e, il_vec3 down)
 {
     il_vec3 in = v3_add(down, e->gathered);
@@ -108,16 +111,19 @@ static void push_pull(il_hr_elem *e, il_vec3 down)
         return;
     }
     il_vec3 b = v3s(0.0f), h = v3s(0.0f);
-    float area = 0.0f;
+    float area = 0.0f, exposed = 0.0f;
     for (uint32_t k = 0; k < 4; k++) {
         push_pull(&kids[k], in);
         b = v3_fma(b, kids[k].radiance, kids[k].area);
         h = v3_fma(h, kids[k].incoming, kids[k].area);
+        exposed += kids[k].exposure * kids[k].area;
         area += kids[k].area;
     }
     float inv = area > 0.0f ? 1.0f / area : 0.0f;
     e->radiance = v3_scale(b, inv);
     e->incoming = v3_scale(h, inv);
+    /* The children's estimates are finer than the element's own. */
+    e->exposure = exposed * inv;
 }
 
 void il_hr_push_pull_root(il_hr_elem *root) { push_pull(root, v3s(0.0f)); }

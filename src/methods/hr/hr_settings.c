@@ -2,9 +2,9 @@
  *
  * The epsilons are relative (docs/hierarchical-radiosity.md):
  *   bf_eps:    SPLASH-2 refines while F * B > BFepsilon with B in absolute
- *              units; we divide B by the largest emitted radiance B_max, so
- *              the lights' power does not matter (default 0.015, SPLASH-2's
- *              value for its unit-power lights);
+ *              units; we divide B by the scene's mean emitted radiance
+ *              B_ref (hr_refine.c), so the lights' power does not matter
+ *              (default 0.015, SPLASH-2's value);
  *   area_eps:  SPLASH-2's minimum area 2000 in a room about 1700 units wide
  *              becomes a fraction of the scene's bounding-box diagonal
  *              squared, 2000 / 1700^2, so the scene's units do not matter;

@@ -1,7 +1,8 @@
 /* Hierarchical radiosity against the path tracer on the built-in (diffuse)
  * Cornell box: the mean radiance over the pixels of each wall and block
  * agrees within 3% (luminance; 6% per channel).  The path tracer runs deep
- * (radiosity has every bounce). */
+ * (radiosity has every bounce).  bf_eps 0.005 (within 2.3%; the default
+ * 0.015 gives up to -3.8% on the floor and the tall block). */
 #include "hr_scenes.h"
 
 #define W 64
@@ -18,7 +19,7 @@ int main(void)
     il_render_desc pt = {.method = IL_METHOD_PT, .spp = 512, .max_depth = 64, .threads = 2, .seed = 3};
     il_image ref = render_image(s, W, H, &pt, IL_PT_MIS, NULL);
 
-    il_hr_desc hd = {.bf_eps = 0.001f, .energy_eps = 1e-4f};
+    il_hr_desc hd = {.bf_eps = 0.005f, .energy_eps = 1e-4f};
     il_render_desc rd = {.method = IL_METHOD_HR, .spp = 16, .threads = 2, .seed = 3, .hr = &hd};
     il_render_stats st;
     il_image img = hr_render_image(s, W, H, &rd, &st);

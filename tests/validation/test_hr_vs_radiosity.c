@@ -19,7 +19,7 @@ int main(void)
     il_image ref = hr_render_image(s, W, H, &rr, &st);
     printf("radiosity: %u patches, %u steps\n", st.radiosity.num_patches, st.radiosity.steps);
 
-    il_hr_desc hd = {.bf_eps = 0.001f, .area_eps = 1e-4f, .energy_eps = 1e-4f};
+    il_hr_desc hd = {.bf_eps = 0.005f, .energy_eps = 1e-4f};
     il_render_desc rd = {.method = IL_METHOD_HR, .spp = 16, .threads = 2, .seed = 5, .hr = &hd};
     il_image img = hr_render_image(s, W, H, &rd, &st);
     hr_print_stats("hr", &st.hr);
