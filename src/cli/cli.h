@@ -32,6 +32,13 @@ bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out);
 /* Argument cursor: fetches the value after option argv[*i], or reports a usage error. */
 const char *cli_value(int argc, char **argv, int *i);
 
+/* An argument no option of command `cmd` took: an unknown option is a
+ * usage error, else it is the scene (one at most).  Returns IL_EXIT_OK or
+ * IL_EXIT_USAGE (message printed). */
+int cli_scene_argument(const char *cmd, const char *arg, const char **scene);
+/* After the arguments: IL_EXIT_OK when a scene was given, else a usage error. */
+int cli_require_scene(const char *cmd, const char *scene);
+
 /* The log callback that prints loader warnings ("illum: warning: ...") unless quiet. */
 void cli_log(il_log_level level, const char *message, void *user);
 

@@ -143,3 +143,25 @@ int cli_load_scene(const char *path, bool quiet, il_scene **out)
     }
     return IL_EXIT_OK;
 }
+
+int cli_scene_argument(const char *cmd, const char *arg, const char **scene)
+{
+    if (arg[0] == '-' && arg[1] != '\0') {
+        cli_error("%s: unknown option '%s' (see 'illum %s --help')", cmd, arg, cmd);
+        return IL_EXIT_USAGE;
+    }
+    if (*scene) {
+        cli_error("%s: one scene at a time ('%s' is extra)", cmd, arg);
+        return IL_EXIT_USAGE;
+    }
+    *scene = arg;
+    return IL_EXIT_OK;
+}
+
+int cli_require_scene(const char *cmd, const char *scene)
+{
+    if (scene)
+        return IL_EXIT_OK;
+    cli_error("%s: no scene given (see 'illum %s --help')", cmd, cmd);
+    return IL_EXIT_USAGE;
+}

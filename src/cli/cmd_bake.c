@@ -123,21 +123,15 @@ static int parse_options(int argc, char **argv, bake_options *o)
             o->stats = v;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o->quiet = true;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            cli_error("bake: unknown option '%s' (see 'illum bake --help')", a);
-            return IL_EXIT_USAGE;
-        } else if (!o->scene) {
-            o->scene = a;
         } else {
-            cli_error("bake: one scene at a time ('%s' is extra)", a);
-            return IL_EXIT_USAGE;
+            int rc = cli_scene_argument("bake", a, &o->scene);
+            if (rc != IL_EXIT_OK)
+                return rc;
         }
 #undef VALUE
     }
-    if (!o->scene) {
-        cli_error("bake: no scene given (see 'illum bake --help')");
+    if (cli_require_scene("bake", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    }
     if (!o->output) {
         cli_error("bake: no output given: -o OUT.ply, OUT.glb or OUT.gltf");
         return IL_EXIT_USAGE;

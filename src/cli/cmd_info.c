@@ -21,20 +21,14 @@ int cmd_info(int argc, char **argv)
             return IL_EXIT_OK;
         } else if (!strcmp(argv[i], "--quiet")) {
             quiet = true;
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            cli_error("info: unknown option '%s' (see 'illum info --help')", argv[i]);
-            return IL_EXIT_USAGE;
-        } else if (!path) {
-            path = argv[i];
         } else {
-            cli_error("info: one scene at a time ('%s' is extra)", argv[i]);
-            return IL_EXIT_USAGE;
+            int rc = cli_scene_argument("info", argv[i], &path);
+            if (rc != IL_EXIT_OK)
+                return rc;
         }
     }
-    if (!path) {
-        cli_error("info: no scene given (see 'illum info --help')");
+    if (cli_require_scene("info", path) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    }
     il_scene *scene = NULL;
     /* Warnings are listed below, so the loader need not print them too. */
     int rc = cli_load_scene(path, true, &scene);

@@ -327,21 +327,15 @@ static int parse_options(int argc, char **argv, render_options *o)
             o->stats = v;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             o->quiet = true;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            cli_error("render: unknown option '%s' (see 'illum render --help')", a);
-            return IL_EXIT_USAGE;
-        } else if (!o->scene) {
-            o->scene = a;
         } else {
-            cli_error("render: one scene at a time ('%s' is extra)", a);
-            return IL_EXIT_USAGE;
+            int rc = cli_scene_argument("render", a, &o->scene);
+            if (rc != IL_EXIT_OK)
+                return rc;
         }
 #undef VALUE
     }
-    if (!o->scene) {
-        cli_error("render: no scene given (see 'illum render --help')");
+    if (cli_require_scene("render", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    }
     return check_method_options(o, false);
 }
 

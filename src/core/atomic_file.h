@@ -10,7 +10,7 @@
 typedef struct il_atomic_file {
     FILE *f;            /* write here */
     const char *path;   /* the target */
-    char *tmp;          /* path.tmp-XXXXXX */
+    char *tmp;          /* path + ".tmp-" + six random characters (mkstemp) */
 } il_atomic_file;
 
 /* Creates the temporary file (mode 0644) and opens it for binary writing. */

@@ -87,4 +87,17 @@ il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
                                const il_vec3 *vertex_radiance, il_film *film,
                                const il_render_desc *desc, il_render_stats *stats, il_error *err);
 
+/* A patch method's solve: the meshed scene and its per-vertex radiance
+ * (the caller frees both), the method's stats filled. */
+typedef il_status (*il_patch_solve_fn)(const il_scene *scene, const il_render_desc *desc,
+                                       il_patch_mesh **mesh_out, il_vec3 **vertex_radiance_out,
+                                       il_render_stats *stats, il_error *err);
+
+/* The il_render entry of a patch method: solve, then il_patch_render_film.
+ * stats must not be NULL; after the camera pass, *seconds_render gets its
+ * time (a field of the method's stats) and stats->seconds the total. */
+il_status il_patch_solve_and_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                                    il_patch_solve_fn solve, il_render_stats *stats,
+                                    double *seconds_render, il_error *err);
+
 #endif

@@ -18,6 +18,8 @@
  *
  * The film loop is the shared camera pass (methods/camera_pass.c), so the
  * film is bit-identical whatever the thread count. */
+#include <omp.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -195,4 +197,24 @@ il_status il_patch_render_film(const il_scene *scene, const il_patch_mesh *mesh,
         stats->nonfinite_samples += r.nonfinite_samples;
     }
     return IL_OK;
+}
+
+il_status il_patch_solve_and_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                                    il_patch_solve_fn solve, il_render_stats *stats,
+                                    double *seconds_render, il_error *err)
+{
+    double t0 = omp_get_wtime();
+    il_patch_mesh *mesh = NULL;
+    il_vec3 *vr = NULL;
+    il_status st = solve(scene, desc, &mesh, &vr, stats, err);
+    if (st != IL_OK)
+        return st;
+    /* The camera pass sets spp and adds its rays to the solver's stats. */
+    double t1 = omp_get_wtime();
+    st = il_patch_render_film(scene, mesh, vr, film, desc, stats, err);
+    *seconds_render = omp_get_wtime() - t1;
+    stats->seconds = omp_get_wtime() - t0;
+    il_patch_mesh_release(mesh);
+    free(vr);
+    return st;
 }

@@ -16,7 +16,8 @@
  *
  * A .gltf gets its buffer in NAME.bin beside it: assimp names the buffer
  * after the part of the file name before ".gltf", which the temporary name
- * (NAME.gltf.tmp-XXXXXX) keeps, so the renamed .gltf finds it. */
+ * (NAME.gltf.tmp- and six random characters) keeps, so the renamed .gltf
+ * finds it. */
 #include <assimp/cexport.h>
 #include <assimp/cimport.h>
 #include <assimp/material.h>

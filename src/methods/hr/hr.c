@@ -91,18 +91,6 @@ il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_des
     il_render_stats local;
     if (!stats)
         stats = &local;
-    double t0 = omp_get_wtime();
-    il_patch_mesh *mesh = NULL;
-    il_vec3 *vr = NULL;
-    il_status st = il_hr_run(scene, desc, &mesh, &vr, stats, err);
-    if (st != IL_OK)
-        return st;
-    /* The camera pass sets spp and adds its rays to the solver's stats. */
-    double t1 = omp_get_wtime();
-    st = il_patch_render_film(scene, mesh, vr, film, desc, stats, err);
-    stats->hr.seconds_render = omp_get_wtime() - t1;
-    stats->seconds = omp_get_wtime() - t0;
-    il_patch_mesh_release(mesh);
-    free(vr);
-    return st;
+    return il_patch_solve_and_render(scene, film, desc, il_hr_run, stats, &stats->hr.seconds_render,
+                                     err);
 }

@@ -58,6 +58,19 @@ bool il_hr_facing(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *
     return ab > s->plane_eps && ba > s->plane_eps;
 }
 
+/* How many of the n rays nothing blocks. */
+static uint32_t unblocked(const il_tracer *tr, const il_ray *rays, uint32_t n)
+{
+    bool blocked[RAY_BATCH];
+    if (n == 0)
+        return 0;
+    il_trace_occluded_n(tr, rays, blocked, n);
+    uint32_t open = 0;
+    for (uint32_t k = 0; k < n; k++)
+        open += !blocked[k];
+    return open;
+}
+
 static float visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
                         const il_hr_elem *src, float *bound)
 {
@@ -67,7 +80,6 @@ static float visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_ele
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(s->set.seed, r->id), src->id);
     const il_tracer *tr = s->mesh->tracer;
     il_ray rays[RAY_BATCH];
-    bool blocked[RAY_BATCH];
     uint32_t counted = 0, open = 0, nb = 0;
     /* Pairs that do not face each other are drawn again, up to
      * VIS_ATTEMPTS n draws in all, so that elements which straddle each
@@ -85,18 +97,12 @@ static float visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_ele
             continue;
         rays[nb++] = il_shadow_ray(tr, p, r->normal, q, src->normal);
         counted++;
-        if (nb == RAY_BATCH || counted == n) {
-            il_trace_occluded_n(tr, rays, blocked, nb);
-            for (uint32_t k2 = 0; k2 < nb; k2++)
-                open += !blocked[k2];
+        if (nb == RAY_BATCH) {
+            open += unblocked(tr, rays, nb);
             nb = 0;
         }
     }
-    if (nb > 0) {
-        il_trace_occluded_n(tr, rays, blocked, nb);
-        for (uint32_t k2 = 0; k2 < nb; k2++)
-            open += !blocked[k2];
-    }
+    open += unblocked(tr, rays, nb);
     pool->vis_rays += counted;
     /* No facing pair found: nothing is known, so the oracle assumes the
      * worst (bound 1) and the link gathers nothing until split. */

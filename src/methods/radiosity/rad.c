@@ -164,24 +164,19 @@ fail:
     return st;
 }
 
+/* il_rad_run without the per-patch radiance: an il_patch_solve_fn. */
+static il_status rad_solve(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
+                           il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
+{
+    return il_rad_run(scene, desc, mesh_out, NULL, vertex_radiance_out, stats, err);
+}
+
 il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
                         il_render_stats *stats, il_error *err)
 {
     il_render_stats local;
     if (!stats)
         stats = &local;
-    double t0 = omp_get_wtime();
-    il_patch_mesh *mesh = NULL;
-    il_vec3 *vr = NULL;
-    il_status st = il_rad_run(scene, desc, &mesh, NULL, &vr, stats, err);
-    if (st != IL_OK)
-        return st;
-    /* The camera pass sets spp and adds its rays to the solver's stats. */
-    double t1 = omp_get_wtime();
-    st = il_patch_render_film(scene, mesh, vr, film, desc, stats, err);
-    stats->radiosity.seconds_render = omp_get_wtime() - t1;
-    stats->seconds = omp_get_wtime() - t0;
-    il_patch_mesh_release(mesh);
-    free(vr);
-    return st;
+    return il_patch_solve_and_render(scene, film, desc, rad_solve, stats,
+                                     &stats->radiosity.seconds_render, err);
 }
