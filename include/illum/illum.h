@@ -271,7 +271,9 @@ void il_film_release(il_film *film);
 typedef enum il_method {
     IL_METHOD_PT = 0,        /* reference path tracer (docs/path-tracer.md) */
     IL_METHOD_RADIOSITY,     /* progressive-refinement radiosity (docs/radiosity.md) */
-    IL_METHOD_HR             /* hierarchical radiosity (docs/hierarchical-radiosity.md) */
+    IL_METHOD_HR,            /* hierarchical radiosity (docs/hierarchical-radiosity.md) */
+    IL_METHOD_PHOTON,        /* photon mapping: global + caustic maps (docs/photon-mapping.md) */
+    IL_METHOD_SPPM           /* stochastic progressive photon mapping (docs/photon-mapping.md) */
 } il_method;
 typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
 typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
@@ -384,6 +386,53 @@ typedef struct il_hr_stats {
     uint64_t peak_bytes;       /* pools of elements, links and visibility */
 } il_hr_stats;
 
+/* ---------------------------------------------------------- photon mapping */
+
+/* How photons near a point are found: the k nearest in a balanced kd-tree
+ * (within max_radius), or all within a fixed radius in a hashed uniform grid. */
+typedef enum il_photon_lookup { IL_PHOTON_KDTREE = 0, IL_PHOTON_GRID } il_photon_lookup;
+/* Density-estimation kernel (Jensen 2001, 7.2): cone filter (k = 1.1) or
+ * Epanechnikov; both normalised so that a uniform density is unbiased. */
+typedef enum il_photon_filter { IL_PHOTON_CONE = 0, IL_PHOTON_EPANECHNIKOV } il_photon_filter;
+
+/* Jensen's two-pass photon mapping (IL_METHOD_PHOTON) and Hachisuka &
+ * Jensen's stochastic progressive photon mapping (IL_METHOD_SPPM).  Radii
+ * are fractions of the scene's bounding-box diagonal, so a scene in
+ * millimetres renders as the same scene in metres. */
+typedef struct il_photon_desc {
+    uint64_t photons;          /* PHOTON: photons emitted; 0 means 1,000,000.
+                                  SPPM: photons emitted per pass; 0 means 250,000 */
+    uint32_t k;                /* neighbours per kd-tree estimate; 0 means 100 */
+    float max_radius;          /* largest search radius (kd-tree) or the fixed
+                                  radius (grid); 0 means 0.02 */
+    il_photon_lookup lookup;
+    il_photon_filter filter;
+    uint32_t final_gather;     /* PHOTON: rays per camera hit gathering indirect
+                                  light from the global map at their hits; 0: the
+                                  global map is read at the camera hit directly */
+    float alpha;               /* SPPM: fraction of new photons kept per pass; 0 means 0.7 */
+    float initial_radius;      /* SPPM: first per-pixel radius; 0 means 0.01 */
+    uint32_t max_photon_depth; /* bounces a photon may take; 0 means max_depth - 1 */
+    uint32_t no_precomputed_irradiance; /* PHOTON: 0 (default) reads the global map at
+                                  Lambertian surfaces from irradiance precomputed at
+                                  every 4th photon (Christensen 1999); nonzero: a
+                                  full estimate at every hit */
+} il_photon_desc;
+
+typedef struct il_photon_stats {
+    uint64_t emitted;          /* photons emitted (all passes) */
+    uint64_t stored_global;    /* photons in the global map (PHOTON) */
+    uint64_t stored_caustic;   /* photons in the caustic map (PHOTON) */
+    uint64_t stored;           /* photon hits deposited (SPPM, all passes) */
+    uint64_t photon_rays;      /* rays cast tracing photons */
+    uint32_t passes;           /* SPPM passes (PHOTON: 1) */
+    double seconds_trace;      /* tracing and storing photons */
+    double seconds_build;      /* building the kd-trees or grids */
+    double seconds_render;     /* camera pass (estimates, final gather) */
+    uint64_t map_bytes;        /* the photon maps and their search structures */
+    uint32_t bytes_per_photon; /* one stored photon */
+} il_photon_stats;
+
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
@@ -399,6 +448,7 @@ typedef struct il_render_desc {
     void *progress_user;
     const il_radiosity_desc *radiosity; /* IL_METHOD_RADIOSITY options; NULL: defaults */
     const il_hr_desc *hr;    /* IL_METHOD_HR options; NULL: defaults */
+    const il_photon_desc *photon; /* IL_METHOD_PHOTON and IL_METHOD_SPPM options; NULL: defaults */
 } il_render_desc;
 
 typedef struct il_render_stats {
@@ -408,6 +458,7 @@ typedef struct il_render_stats {
     uint64_t nonfinite_samples; /* samples dropped because they were NaN or Inf */
     il_radiosity_stats radiosity; /* IL_METHOD_RADIOSITY only */
     il_hr_stats hr;          /* IL_METHOD_HR only */
+    il_photon_stats photon;  /* IL_METHOD_PHOTON and IL_METHOD_SPPM only */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is

@@ -55,7 +55,7 @@ int cli_load_scene(const char *path, bool quiet, il_scene **out);
 bool cli_write_json(const char *path, struct cJSON *json);
 
 /* Method names and the pieces every method's own option set shares (cli_method.c). */
-bool cli_method_from_name(const char *name, il_method *out); /* "pt", "radiosity", "hr" */
+bool cli_method_from_name(const char *name, il_method *out); /* "pt", "radiosity", "hr", "photon", "sppm" */
 const char *cli_method_name(il_method method);
 
 /* Which options of one method's set the command line gave. */
@@ -113,6 +113,24 @@ bool cli_hr_option(int argc, char **argv, int *i, cli_hr_options *o, int *rc);
 void cli_hr_stats_json(struct cJSON *parent, const il_hr_stats *stats);
 /* One line on stderr: patches, elements, links, iterations, rays, time per phase. */
 void cli_hr_summary(const il_hr_stats *stats);
+
+/* The photon-mapping options (cli_photon.c), for render. */
+typedef struct cli_photon_options {
+    il_photon_desc desc;
+    cli_method_note note;            /* an option of both photon and sppm */
+    cli_method_note photon_only;     /* --k, --photon-filter, --final-gather */
+    cli_method_note sppm_only;       /* --alpha, --initial-radius */
+} cli_photon_options;
+
+extern const char cli_photon_help[];
+/* As cli_radiosity_option, for the options cli_photon_help lists. */
+bool cli_photon_option(int argc, char **argv, int *i, cli_photon_options *o, int *rc);
+/* The usage error when an option given does not belong to `method`. */
+int cli_photon_check_method(const char *command, const cli_photon_options *o, il_method method);
+/* Adds the "photon" object of --stats (every il_photon_stats field) to `parent`. */
+void cli_photon_stats_json(struct cJSON *parent, const il_photon_stats *stats);
+/* One line on stderr: photons, rate, maps, time per phase. */
+void cli_photon_summary(il_method method, const il_photon_stats *stats);
 
 int cmd_render(int argc, char **argv);
 int cmd_info(int argc, char **argv);

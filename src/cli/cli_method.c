@@ -13,6 +13,8 @@ static const struct {
     {"pt", IL_METHOD_PT},
     {"radiosity", IL_METHOD_RADIOSITY},
     {"hr", IL_METHOD_HR},
+    {"photon", IL_METHOD_PHOTON},
+    {"sppm", IL_METHOD_SPPM},
 };
 
 bool cli_method_from_name(const char *name, il_method *out)

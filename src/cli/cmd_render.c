@@ -15,14 +15,16 @@ static const char *help =
     "usage: illum render SCENE [options]\n"
     "\n"
     "Renders SCENE (a mesh file, a .json scene file, or a built-in name: cornell,\n"
-    "atrium, simple-room, shadow-room, box-room, office) through its camera and\n"
-    "writes the image(s).\n"
+    "atrium, simple-room, shadow-room, box-room, office, cornell-spheres) through\n"
+    "its camera and writes the image(s).\n"
     "\n"
-    "  --method pt|radiosity|hr\n"
+    "  --method pt|radiosity|hr|photon|sppm\n"
     "                         rendering method (pt: path tracing, the default;\n"
     "                         radiosity: progressive radiosity; hr: hierarchical\n"
-    "                         radiosity; 'illum render --method M --help' lists a\n"
-    "                         method's own options)\n"
+    "                         radiosity; photon: photon mapping; sppm: stochastic\n"
+    "                         progressive photon mapping, one photon pass per spp;\n"
+    "                         'illum render --method M --help' lists a method's own\n"
+    "                         options)\n"
     "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
     "  --time SECONDS         render passes until SECONDS have passed\n"
     "  --width W --height H   image size in pixels (default 512 x 512)\n"
@@ -63,6 +65,7 @@ typedef struct render_options {
     bool has_method;
     cli_radiosity_options rad;
     cli_hr_options hr;
+    cli_photon_options photon;
 } render_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -195,7 +198,7 @@ static int check_method_options(const render_options *o, bool final)
         return cli_method_mismatch("render", &o->rad.note, "radiosity", "radiosity");
     if (o->hr.note.given && o->desc.method != IL_METHOD_HR)
         return cli_method_mismatch("render", &o->hr.note, "hierarchical radiosity", "hr");
-    return IL_EXIT_OK;
+    return cli_photon_check_method("render", &o->photon, o->desc.method);
 }
 
 static int parse_options(int argc, char **argv, render_options *o)
@@ -205,7 +208,8 @@ static int parse_options(int argc, char **argv, render_options *o)
         const char *v = NULL;
         int opt_rc;
         if (cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
-            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc)) {
+            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
+            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -221,11 +225,14 @@ static int parse_options(int argc, char **argv, render_options *o)
                 fputs(cli_radiosity_help, stdout);
             if (cli_help_wants_method(argc, argv, "hr"))
                 fputs(cli_hr_help, stdout);
+            if (cli_help_wants_method(argc, argv, "photon") || cli_help_wants_method(argc, argv, "sppm"))
+                fputs(cli_photon_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
             if (!cli_method_from_name(v, &o->desc.method)) {
-                cli_error("--method: unknown method '%s' (available: pt, radiosity, hr)", v);
+                cli_error("--method: unknown method '%s' "
+                          "(available: pt, radiosity, hr, photon, sppm)", v);
                 return IL_EXIT_BAD_INPUT;
             }
             o->has_method = true;
@@ -357,7 +364,7 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
         return IL_EXIT_OK;
     il_method method = IL_METHOD_PT;
     if (rs.method[0] && !cli_method_from_name(rs.method, &method)) {
-        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr)",
+        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr, photon, sppm)",
                   o->scene, rs.method);
         return IL_EXIT_BAD_INPUT;
     }
@@ -430,6 +437,8 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
         cli_radiosity_stats_json(j, &rs->radiosity);
     else if (o->desc.method == IL_METHOD_HR)
         cli_hr_stats_json(j, &rs->hr);
+    else if (o->desc.method == IL_METHOD_PHOTON || o->desc.method == IL_METHOD_SPPM)
+        cli_photon_stats_json(j, &rs->photon);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;
@@ -487,6 +496,7 @@ int cmd_render(int argc, char **argv)
         o.desc.radiosity = &o.rad.desc;
     }
     o.desc.hr = &o.hr.desc;
+    o.desc.photon = &o.photon.desc;
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old_sa);
@@ -520,6 +530,8 @@ int cmd_render(int argc, char **argv)
             cli_radiosity_summary(&rs.radiosity);
         else if (o.desc.method == IL_METHOD_HR)
             cli_hr_summary(&rs.hr);
+        else if (o.desc.method == IL_METHOD_PHOTON || o.desc.method == IL_METHOD_SPPM)
+            cli_photon_summary(o.desc.method, &rs.photon);
         fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
                 rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);

@@ -26,6 +26,10 @@ static const char *method_name(il_method m)
         return "radiosity";
     case IL_METHOD_HR:
         return "hr";
+    case IL_METHOD_PHOTON:
+        return "photon";
+    case IL_METHOD_SPPM:
+        return "sppm";
     }
     return NULL;
 }

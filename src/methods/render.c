@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "illum/illum.h"
 #include "methods/hr/hr.h"
+#include "methods/photon/pm.h"
 #include "methods/pt/pt.h"
 #include "methods/radiosity/rad.h"
 #include "scene/scene.h"
@@ -30,7 +31,7 @@ static il_status validate(const il_scene *scene, const il_film *film, const il_r
                        "render: the scene is not committed (call il_scene_commit first)");
     if (il_film_width(film) == 0 || il_film_height(film) == 0)
         return il_fail(err, IL_ERR_INVALID, "render: the film has no pixels");
-    if ((unsigned)d->method > IL_METHOD_HR)
+    if ((unsigned)d->method > IL_METHOD_SPPM)
         return il_fail(err, IL_ERR_INVALID, "render: unknown method %d", (int)d->method);
     if (d->spp > IL_MAX_SPP)
         return il_fail(err, IL_ERR_INVALID, "render: spp %u is out of range (1 to %u; 0 means the default)",
@@ -67,6 +68,10 @@ il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *
         return il_rad_render(scene, film, desc, stats, err);
     case IL_METHOD_HR:
         return il_hr_render(scene, film, desc, stats, err);
+    case IL_METHOD_PHOTON:
+        return il_pm_render(scene, film, desc, stats, err);
+    case IL_METHOD_SPPM:
+        return il_sppm_render(scene, film, desc, stats, err);
     case IL_METHOD_PT:
     default:
         return il_pt_render(scene, film, desc, IL_PT_MIS, stats, err);

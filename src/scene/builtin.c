@@ -17,6 +17,7 @@ static const builtin_entry builtins[] = {
     {"shadow-room", il_builtin_shadow_room},
     {"box-room", il_builtin_box_room},
     {"office", il_builtin_office},
+    {"cornell-spheres", il_builtin_cornell_spheres},
 };
 
 static const builtin_entry *find_builtin(const char *name)
@@ -39,7 +40,7 @@ il_status il_builtin_load(il_scene *scene, const char *name, il_error *err)
     const builtin_entry *b = find_builtin(name);
     if (!b)
         return il_fail(err, IL_ERR_INVALID, "'%s' is not a built-in scene (cornell, atrium, simple-room, "
-                       "shadow-room, box-room, office)",
+                       "shadow-room, box-room, office, cornell-spheres)",
                        name ? name : "(null)");
     return b->build(scene, err);
 }

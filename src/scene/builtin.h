@@ -6,7 +6,7 @@
 #include "illum/illum.h"
 
 /* True when `name` is a built-in scene ("cornell", "atrium", "simple-room",
- * "shadow-room", "box-room", "office"). */
+ * "shadow-room", "box-room", "office", "cornell-spheres"). */
 bool il_builtin_exists(const char *name);
 /* Fills an empty scene with the built-in scene of that name. */
 il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
@@ -15,6 +15,9 @@ il_status il_builtin_load(il_scene *scene, const char *name, il_error *err);
  * and light spectrum converted to linear Rec.709 through the CIE 1931
  * colour-matching functions, with the published camera. */
 il_status il_builtin_cornell(il_scene *scene, il_error *err);
+/* The same box with a mirror sphere and a glass sphere instead of the
+ * blocks (the caustics scene of photon mapping). */
+il_status il_builtin_cornell_spheres(il_scene *scene, il_error *err);
 /* A two-storey arcaded courtyard, about 250,000 triangles, sun + lamps. */
 il_status il_builtin_atrium(il_scene *scene, il_error *err);
 /* The radiosity rooms (builtin_rooms.c, docs/builtin-scenes.md): a 4 x 3 x 4 m

@@ -21,6 +21,7 @@
 
 #include "core/color.h"
 #include "core/vec.h"
+#include "scene/loader.h"
 
 #define CORNELL_NREFL 76
 #define MM 0.001f /* published millimetres -> metres */
@@ -154,7 +155,9 @@ static il_vec3 cornell_albedo(int col)
     return il_reflectance_to_rgb(lambda, value, CORNELL_NREFL);
 }
 
-il_status il_builtin_cornell(il_scene *scene, il_error *err)
+/* The walls, the light and the published camera, shared by both boxes;
+ * *white is the white paint's material. */
+static il_status add_shell(il_scene *scene, uint32_t *white_out, il_error *err)
 {
     il_status st;
     uint32_t white, green, red, light;
@@ -182,10 +185,9 @@ il_status il_builtin_cornell(il_scene *scene, il_error *err)
         if ((st = add_quads(scene, cornell_wall_names[i], &cornell_walls[i], 1, wall_material[i], err)) !=
             IL_OK)
             return st;
-    if ((st = add_quads(scene, "short_block", cornell_short_block, 5, white, err)) != IL_OK ||
-        (st = add_quads(scene, "tall_block", cornell_tall_block, 5, white, err)) != IL_OK ||
-        (st = add_quads(scene, "light", &cornell_light, 1, light, err)) != IL_OK)
+    if ((st = add_quads(scene, "light", &cornell_light, 1, light, err)) != IL_OK)
         return st;
+    *white_out = white;
 
     /* Published camera: at (278, 273, -800) mm looking along +z, up +y, a
      * 35 mm lens on a 25 x 25 mm film: fov = 2 atan(12.5 / 35) = 39.3076 deg. */
@@ -196,4 +198,59 @@ il_status il_builtin_cornell(il_scene *scene, il_error *err)
         .fov_y = (float)(2.0 * atan(12.5 / 35.0) * 180.0 / 3.14159265358979323846),
     };
     return il_scene_set_camera(scene, &cam, err);
+}
+
+il_status il_builtin_cornell(il_scene *scene, il_error *err)
+{
+    uint32_t white;
+    il_status st = add_shell(scene, &white, err);
+    if (st == IL_OK)
+        st = add_quads(scene, "short_block", cornell_short_block, 5, white, err);
+    if (st == IL_OK)
+        st = add_quads(scene, "tall_block", cornell_tall_block, 5, white, err);
+    return st;
+}
+
+/* A sphere of radius r (mm) resting on the floor at (x, z) mm. */
+static il_status add_sphere(il_scene *scene, const char *name, float x, float z, float r,
+                            uint32_t material, il_error *err)
+{
+    il_shape_mesh sm;
+    il_status st = il_shape_sphere(r * MM, 96, &sm, err);
+    if (st != IL_OK)
+        return st;
+    for (uint32_t v = 0; v < sm.num_vertices; v++) {
+        sm.positions[v * 3 + 0] += x * MM;
+        sm.positions[v * 3 + 1] += r * MM;
+        sm.positions[v * 3 + 2] += z * MM;
+    }
+    il_mesh_desc md = {.name = name,
+                       .num_vertices = sm.num_vertices,
+                       .num_triangles = sm.num_triangles,
+                       .positions = sm.positions,
+                       .normals = sm.normals,
+                       .indices = sm.indices,
+                       .material = material};
+    st = il_scene_add_mesh(scene, &md, err);
+    il_shape_free(&sm);
+    return st;
+}
+
+il_status il_builtin_cornell_spheres(il_scene *scene, il_error *err)
+{
+    uint32_t white, mirror, glass;
+    il_status st = add_shell(scene, &white, err);
+    il_material_desc m = {.name = "mirror", .type = IL_MATERIAL_MIRROR};
+    if (st == IL_OK)
+        st = il_scene_add_material(scene, &m, &mirror, err);
+    m = (il_material_desc){.name = "glass", .type = IL_MATERIAL_DIELECTRIC, .ior = 1.5f};
+    if (st == IL_OK)
+        st = il_scene_add_material(scene, &m, &glass, err);
+    /* Jensen's arrangement (2001, fig. 9.4): the mirror ball at the back
+     * left, the glass ball in front on the right, under the light's edge. */
+    if (st == IL_OK)
+        st = add_sphere(scene, "mirror_sphere", 185.0f, 370.0f, 100.0f, mirror, err);
+    if (st == IL_OK)
+        st = add_sphere(scene, "glass_sphere", 380.0f, 180.0f, 100.0f, glass, err);
+    return st;
 }

@@ -97,7 +97,7 @@ static void test_names(void)
     il_scene *s = NULL;
     il_scene_create(&s, &err);
     CHECK(il_builtin_load(s, "offices", &err) == IL_ERR_INVALID);
-    CHECK(strstr(err.message, "office)") != NULL);
+    CHECK(strstr(err.message, "office, cornell-spheres)") != NULL);
     il_scene_release(s);
 }
 

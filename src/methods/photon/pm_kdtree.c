@@ -1,0 +1,344 @@
+/* Balanced kd-tree over the photons (Jensen 2001, "Realistic Image Synthesis
+ * Using Photon Mapping", 6.3): a left-balanced tree stored as a heap (node i
+ * has children 2i+1 and 2i+2), so no child pointers are kept; each node's
+ * split axis lives in bits 14-15 of its photon's `normal`.
+ *
+ * Build: the photons of a subtree are split at the median along the largest
+ * extent of their bounding box by selection (O(n) expected), which gives an
+ * in-order layout in O(n log n); one permutation pass then moves every
+ * photon to its heap slot. */
+#include <string.h>
+
+#include "methods/photon/pm_internal.h"
+
+/* Nodes in the left subtree of a left-balanced tree of n nodes: a complete
+ * binary tree whose last level is filled from the left. */
+static size_t left_size(size_t n)
+{
+    if (n <= 1)
+        return 0;
+    size_t h = 0;                          /* levels below the root */
+    while (((size_t)2 << h) <= n)
+        h++;
+    size_t half_last = (size_t)1 << (h - 1);   /* last-level slots under the left child */
+    size_t last = n - (((size_t)1 << h) - 1);  /* nodes on the last level */
+    return (half_last - 1) + (last < half_last ? last : half_last);
+}
+
+static void swap_ph(il_photon *a, il_photon *b)
+{
+    il_photon t = *a;
+    *a = *b;
+    *b = t;
+}
+
+/* Rearranges a[0..n-1] so that a[k] holds the value of rank k along axis,
+ * smaller-or-equal keys before it and greater-or-equal after (Hoare's
+ * FIND with a three-way partition, so runs of equal keys end it at once).
+ * The pivot is the median of three; after many unlucky rounds a position
+ * from a fixed hash sequence, so no input is quadratic in practice. */
+static void select_nth(il_photon *a, size_t n, size_t k, unsigned axis)
+{
+    size_t lo = 0, hi = n;
+    uint64_t h = 0x9E3779B97F4A7C15ull;
+    unsigned rounds = 0;
+    while (hi - lo > 1) {
+        float v;
+        if (++rounds < 64) {
+            float x = a[lo].p[axis], y = a[lo + (hi - lo) / 2].p[axis], z = a[hi - 1].p[axis];
+            v = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
+        } else {
+            h ^= h >> 31;
+            h *= 0xBF58476D1CE4E5B9ull;
+            v = a[lo + (size_t)(h % (hi - lo))].p[axis];
+        }
+        /* [lo,lt) < v, [lt,i) == v, [gt,hi) > v */
+        size_t lt = lo, i = lo, gt = hi;
+        while (i < gt) {
+            float key = a[i].p[axis];
+            if (key < v)
+                swap_ph(&a[lt++], &a[i++]);
+            else if (key > v)
+                swap_ph(&a[i], &a[--gt]);
+            else
+                i++;
+        }
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else
+            return;
+    }
+}
+
+#define KD_TASK_MIN 65536
+
+/* The subtree of a[0..n-1] in in-order layout: its root at left_size(n).
+ * Recursion depth is the tree's height (at most 32 for 2^32 photons). */
+static void build_inorder(il_photon *a, size_t n)
+{
+    while (n > 1) {
+        float lo[3] = {a[0].p[0], a[0].p[1], a[0].p[2]};
+        float hi[3] = {lo[0], lo[1], lo[2]};
+        for (size_t i = 1; i < n; i++) {
+            for (int c = 0; c < 3; c++) {
+                float x = a[i].p[c];
+                lo[c] = x < lo[c] ? x : lo[c];
+                hi[c] = x > hi[c] ? x : hi[c];
+            }
+        }
+        /* Split along the largest extent of the subtree's box (Jensen 6.3.1). */
+        unsigned axis = 0;
+        float ext = hi[0] - lo[0];
+        for (unsigned c = 1; c < 3; c++) {
+            if (hi[c] - lo[c] > ext) {
+                ext = hi[c] - lo[c];
+                axis = c;
+            }
+        }
+        size_t m = left_size(n);
+        select_nth(a, n, m, axis);
+        il_pm_set_axis(&a[m], axis);
+        size_t nr = n - m - 1;
+        if (n >= KD_TASK_MIN) {
+            /* Big subtrees: the left half as a task for another thread.
+             * Subtrees are disjoint and each is built the same way by any
+             * thread, so the tree does not depend on the thread count. */
+#pragma omp task default(none) firstprivate(a, m)
+            build_inorder(a, m);
+            a += m + 1;
+            n = nr;
+        } else if (m <= nr) {
+            /* Recurse into the smaller side, loop on the larger. */
+            build_inorder(a, m);
+            a += m + 1;
+            n = nr;
+        } else {
+            build_inorder(a + m + 1, nr);
+            n = m;
+        }
+    }
+    if (n == 1)
+        il_pm_set_axis(&a[0], 0);
+}
+
+/* dest[in-order position] = heap index, for the subtree of n nodes rooted at
+ * heap index `node` whose photons are at in-order positions lo.. */
+static void heap_slots(uint32_t *dest, size_t lo, size_t n, size_t node)
+{
+    while (n > 0) {
+        size_t m = left_size(n);
+        dest[lo + m] = (uint32_t)node;
+        heap_slots(dest, lo, m, 2 * node + 1);
+        lo += m + 1;
+        n -= m + 1;
+        node = 2 * node + 2;
+    }
+}
+
+void il_pm_permute(il_photon *photons, uint32_t *dest, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        while (dest[i] != i) {
+            uint32_t d = dest[i];
+            swap_ph(&photons[i], &photons[d]);
+            dest[i] = dest[d];
+            dest[d] = d;
+        }
+    }
+}
+
+il_status il_pm_kd_build(il_photon *photons, size_t n, il_error *err)
+{
+    if (n == 0)
+        return IL_OK;
+    uint32_t *dest = il_malloc(n * sizeof *dest, err);
+    if (!dest)
+        return IL_ERR_MEMORY;
+#pragma omp parallel if (n >= KD_TASK_MIN)
+#pragma omp single
+    build_inorder(photons, n);
+    heap_slots(dest, 0, n, 0);
+    il_pm_permute(photons, dest, n);
+    free(dest);
+    return IL_OK;
+}
+
+/* ----------------------------------------------------------------- queries */
+
+/* Subtrees still to visit: the far child and its split plane's distance. */
+typedef struct kd_pending {
+    size_t node;
+    float d2;
+} kd_pending;
+
+/* Nearest-first descent with an explicit stack (Jensen 6.3.2's recursive
+ * locate_photons, unrolled).  `visit` sees every photon whose subtree could
+ * hold one within *bound; *bound may shrink as it goes.  The plane distance
+ * is the very term il_pm_dist2 adds for that axis, so a far subtree is
+ * skipped only when none of its photons can pass the d2 <= bound test. */
+#define KD_TRAVERSE(photons, n, q, bound, VISIT)                                             \
+    do {                                                                                     \
+        kd_pending stack_[64];                                                               \
+        unsigned sp_ = 0;                                                                    \
+        size_t node_ = 0;                                                                    \
+        for (;;) {                                                                           \
+            while (node_ < (n)) {                                                            \
+                const il_photon *ph_ = &(photons)[node_];                                    \
+                float d2_ = il_pm_dist2(ph_, (q));                                           \
+                if (d2_ <= (bound)) {                                                        \
+                    VISIT((uint32_t)node_, d2_);                                             \
+                }                                                                            \
+                size_t l_ = 2 * node_ + 1;                                                   \
+                if (l_ >= (n))                                                               \
+                    break;                                                                   \
+                unsigned ax_ = il_pm_axis(ph_);                                              \
+                float delta_ = (q)[ax_] - ph_->p[ax_];                                       \
+                size_t near_ = delta_ < 0.0f ? l_ : l_ + 1;                                  \
+                size_t far_ = delta_ < 0.0f ? l_ + 1 : l_;                                   \
+                if (far_ < (n))                                                              \
+                    stack_[sp_++] = (kd_pending){far_, delta_ * delta_};                     \
+                node_ = near_;                                                               \
+            }                                                                                \
+            node_ = (size_t)-1;                                                              \
+            while (sp_ > 0) {                                                                \
+                kd_pending it_ = stack_[--sp_];                                              \
+                if (it_.d2 <= (bound)) {                                                     \
+                    node_ = it_.node;                                                        \
+                    break;                                                                   \
+                }                                                                            \
+            }                                                                                \
+            if (node_ == (size_t)-1)                                                         \
+                break;                                                                       \
+        }                                                                                    \
+    } while (0)
+
+/* Rearranges a[0..n-1] so that a[k] has rank k by d2, nearer ones before
+ * it (Hoare's FIND, median-of-three pivot, three-way partition). */
+static void select_nearest(il_pm_neighbour *a, uint32_t n, uint32_t k)
+{
+    uint32_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        float x = a[lo].d2, y = a[lo + (hi - lo) / 2].d2, z = a[hi - 1].d2;
+        float v = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
+        uint32_t lt = lo, i = lo, gt = hi;
+        while (i < gt) {
+            il_pm_neighbour t = a[i];
+            if (t.d2 < v) {
+                a[i++] = a[lt];
+                a[lt++] = t;
+            } else if (t.d2 > v) {
+                a[i] = a[--gt];
+                a[gt] = t;
+            } else {
+                i++;
+            }
+        }
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else
+            return;
+    }
+}
+
+/* Candidates for k nearest without a heap: they are appended to a buffer
+ * of 2k; when it fills, a selection keeps the k nearest and the k-th's
+ * distance becomes the bound (once k are held, only strictly nearer ones
+ * are taken, as with the heap of pm_internal.h).  Amortised O(1) per
+ * candidate instead of a sift through log2(k) levels of a heap. */
+#define KNN_BUF_MAX 2
+
+uint32_t il_pm_kd_knn(const il_photon *photons, size_t n, il_vec3 p, uint32_t k, float max_d2,
+                      il_pm_neighbour *out, float *r2)
+{
+    if (n == 0 || k == 0) {
+        if (r2)
+            *r2 = max_d2;
+        return 0;
+    }
+    const float q[3] = {p.x, p.y, p.z};
+    if (k > KNN_BUF_MAX / 2) {
+        il_pm_knn_heap h = {out, k, 0, max_d2};
+#define KNN_VISIT(i, d2) il_pm_heap_offer(&h, (i), (d2))
+        KD_TRAVERSE(photons, n, q, h.bound, KNN_VISIT);
+#undef KNN_VISIT
+        if (r2)
+            *r2 = h.count == k ? h.items[0].d2 : max_d2;
+        return h.count;
+    }
+    il_pm_neighbour buf[KNN_BUF_MAX];
+    const uint32_t cap = 2 * k;
+    uint32_t count = 0;
+    bool held = false;                 /* k held: bound is the k-th distance */
+    float bound = max_d2;
+#define BUF_VISIT(i, dd)                                                                     \
+    if (!held || (dd) < bound) {                                                             \
+        buf[count++] = (il_pm_neighbour){(i), (dd)};                                         \
+        if (count == k && !held) {                                                           \
+            float m_ = buf[0].d2;                                                            \
+            for (uint32_t j_ = 1; j_ < k; j_++)                                              \
+                m_ = buf[j_].d2 > m_ ? buf[j_].d2 : m_;                                      \
+            bound = m_;                                                                      \
+            held = true;                                                                     \
+        } else if (count == cap) {                                                           \
+            select_nearest(buf, cap, k - 1);                                                 \
+            bound = buf[k - 1].d2;                                                           \
+            count = k;                                                                       \
+        }                                                                                    \
+    }
+    KD_TRAVERSE(photons, n, q, bound, BUF_VISIT);
+#undef BUF_VISIT
+    if (count > k) {
+        select_nearest(buf, count, k - 1);
+        count = k;
+    }
+    float far = max_d2;
+    if (count == k) {
+        far = buf[0].d2;
+        for (uint32_t j = 1; j < k; j++)
+            far = buf[j].d2 > far ? buf[j].d2 : far;
+    }
+    memcpy(out, buf, count * sizeof *out);
+    if (r2)
+        *r2 = far;
+    return count;
+}
+
+bool il_pm_kd_range(const il_photon *photons, size_t n, il_vec3 p, float d2, il_pm_buffer *out)
+{
+    bool ok = true;
+    if (n > 0) {
+        const float q[3] = {p.x, p.y, p.z};
+/* Out of memory: the traversal runs on, storing nothing more. */
+#define RANGE_VISIT(i, dd)                                                                   \
+    if (ok && !il_pm_buffer_push(out, (i), (dd)))                                            \
+        ok = false;
+        KD_TRAVERSE(photons, n, q, d2, RANGE_VISIT);
+#undef RANGE_VISIT
+    }
+    return ok;
+}
+
+uint32_t il_pm_kd_nearest_normal(const il_photon *photons, size_t n, il_vec3 p, il_vec3 nrm,
+                                 float max_d2)
+{
+    uint32_t best = UINT32_MAX;
+    float bound = max_d2;
+    if (n > 0) {
+        const float q[3] = {p.x, p.y, p.z};
+/* Only points facing the query's way count (the normal test of the
+ * estimates); each one found shrinks the search to its distance. */
+#define NEAREST_VISIT(i, dd)                                                                 \
+    if ((best == UINT32_MAX || (dd) < bound) &&                                              \
+        v3_dot(il_photon_normal(&photons[(i)]), nrm) >= IL_PM_NORMAL_COS) {                  \
+        best = (i);                                                                          \
+        bound = (dd);                                                                        \
+    }
+        KD_TRAVERSE(photons, n, q, bound, NEAREST_VISIT);
+#undef NEAREST_VISIT
+    }
+    return best;
+}

@@ -1,0 +1,340 @@
+/* Photon emission (pm_emit.c): every kind of light emits its analytic power
+ * with the right distribution of directions, consistent with what the path
+ * tracer receives from it (lights.c), and lights are chosen by power. */
+#include <string.h>
+
+#include "check.h"
+#include "core/rng.h"
+#include "methods/photon/pm_emit.h"
+#include "scene/lights.h"
+#include "trace/trace.h"
+
+#define PI_D 3.14159265358979323846
+#define N_PHOTONS 200000
+
+static il_error g_err;
+
+static il_scene *new_scene(void)
+{
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_create(&s, &g_err), &g_err);
+    return s;
+}
+
+static uint32_t add_material(il_scene *s, il_material_desc d)
+{
+    uint32_t idx = 0;
+    CHECK_OK(il_scene_add_material(s, &d, &idx, &g_err), &g_err);
+    return idx;
+}
+
+/* A quad: centre c, half-extents ex and ey; its front face is cross(ex, ey). */
+static void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
+{
+    float p[12];
+    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+    for (int i = 0; i < 4; i++) {
+        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
+        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
+        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
+    }
+    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx,
+                      .material = mat};
+    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
+}
+
+/* A floor 10 x 10 at y = -1, facing up: geometry for the scene's bounds. */
+static void add_floor(il_scene *s)
+{
+    add_quad(s, v3(0, -1, 0), v3(0, 0, 5), v3(5, 0, 0), 0);
+}
+
+static void add_light(il_scene *s, il_light_desc d)
+{
+    CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
+}
+
+static void commit(il_scene *s)
+{
+    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
+}
+
+static bool emit(const il_scene *s, il_pcg32 *rng, il_pm_emission *e)
+{
+    float u[IL_PM_EMIT_DIMS];
+    for (int i = 0; i < IL_PM_EMIT_DIMS; i++)
+        u[i] = il_pcg32_float(rng);
+    return il_pm_emit(s, u, e);
+}
+
+/* Statistics of N photons. */
+typedef struct stats {
+    double power[3];     /* mean power (zero for failed emissions) */
+    double mean_dir[3];
+    double mean_cos;     /* mean dot(dir, axis) */
+    double mean_abs_cos;
+    double frac_near;    /* fraction of rays passing within r_near of `centre` */
+    uint32_t failed;
+    uint32_t outside;    /* dot(dir, axis) < min_cos - 1e-5 */
+} stats;
+
+static stats run(const il_scene *s, il_vec3 axis, float min_cos, il_vec3 centre, float r_near)
+{
+    stats st;
+    memset(&st, 0, sizeof st);
+    il_pcg32 rng = il_pcg32_seed(7, 11);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_pm_emission e;
+        if (!emit(s, &rng, &e)) {
+            st.failed++;
+            continue;
+        }
+        st.power[0] += e.power.x;
+        st.power[1] += e.power.y;
+        st.power[2] += e.power.z;
+        st.mean_dir[0] += e.dir.x;
+        st.mean_dir[1] += e.dir.y;
+        st.mean_dir[2] += e.dir.z;
+        double c = v3_dot(e.dir, axis);
+        st.mean_cos += c;
+        st.mean_abs_cos += fabs(c);
+        if (c < min_cos - 1e-5)
+            st.outside++;
+        /* Distance from centre to the ray's line. */
+        il_vec3 d = v3_sub(centre, e.org);
+        il_vec3 perp = v3_sub(d, v3_scale(e.dir, v3_dot(d, e.dir)));
+        if (v3_length(perp) < r_near)
+            st.frac_near += 1.0;
+    }
+    for (int c = 0; c < 3; c++) {
+        st.power[c] /= N_PHOTONS;
+        st.mean_dir[c] /= N_PHOTONS;
+    }
+    st.mean_cos /= N_PHOTONS;
+    st.mean_abs_cos /= N_PHOTONS;
+    st.frac_near /= N_PHOTONS;
+    return st;
+}
+
+static void test_point(void)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0),
+                                 .intensity = v3(1, 2, 3)});
+    commit(s);
+    stats st = run(s, v3(0, 1, 0), -1.0f, v3(0, 0, 0), 0.0f);
+    CHECK(st.failed == 0);
+    CHECK_REL(st.power[0], 4 * PI_D * 1, 1e-5);
+    CHECK_REL(st.power[1], 4 * PI_D * 2, 1e-5);
+    CHECK_REL(st.power[2], 4 * PI_D * 3, 1e-5);
+    /* Uniform over the sphere: mean direction 0, mean |cos| 1/2. */
+    for (int c = 0; c < 3; c++)
+        CHECK_NEAR(st.mean_dir[c], 0.0, 0.006);
+    CHECK_NEAR(st.mean_abs_cos, 0.5, 0.004);
+    il_scene_release(s);
+}
+
+/* Spot: power 2 pi I (1 - c^(n+1)) / (n+1), mean cos (n+1)/(n+2) (1 -
+ * c^(n+2)) / (1 - c^(n+1)), and the intensity profile per solid angle
+ * equals what il_light_sample_at gives the path tracer. */
+static void test_spot(float angle, float n, float expect_cutoff_cos)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    il_vec3 axis = v3_normalize(v3(0.3f, -1.0f, 0.2f));
+    add_light(s, (il_light_desc){.type = IL_LIGHT_SPOT, .position = v3(0, 2, 0), .direction = axis,
+                                 .intensity = v3(2, 1, 0.5f), .spot_angle = angle,
+                                 .spot_exponent = n});
+    commit(s);
+    double cm = expect_cutoff_cos;
+    double z = 2 * PI_D * (1 - pow(cm, n + 1)) / (n + 1);
+    stats st = run(s, axis, (float)cm, v3(0, 0, 0), 0.0f);
+    CHECK(st.failed == 0);
+    CHECK(st.outside == 0);
+    CHECK_REL(st.power[0], 2 * z, 1e-4);
+    CHECK_REL(st.power[1], 1 * z, 1e-4);
+    CHECK_REL(st.power[2], 0.5 * z, 1e-4);
+    CHECK_NEAR(st.mean_cos, (n + 1) / (n + 2) * (1 - pow(cm, n + 2)) / (1 - pow(cm, n + 1)), 0.003);
+
+    /* Intensity profile: photon power per solid angle in bins of cos theta
+     * against the radiance * d^2 the path tracer receives at distance 1. */
+    enum { BINS = 8 };
+    double bin_power[BINS] = {0}, bin_count[BINS] = {0};
+    il_pcg32 rng = il_pcg32_seed(3, 5);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_pm_emission e;
+        if (!emit(s, &rng, &e))
+            continue;
+        double c = v3_dot(e.dir, axis);
+        int b = (int)((c - cm) / (1 - cm) * BINS);
+        if (b >= 0 && b < BINS) {
+            bin_power[b] += e.power.x;
+            bin_count[b] += 1;
+        }
+    }
+    il_frame f = il_frame_from_normal(axis);
+    for (int b = 0; b < BINS; b++) {
+        double c0 = cm + (1 - cm) * b / BINS, c1 = cm + (1 - cm) * (b + 1) / BINS;
+        double photon_i = bin_power[b] / N_PHOTONS / (2 * PI_D * (c1 - c0));
+        double pt_i = 0;
+        const int sub = 64;
+        for (int k = 0; k < sub; k++) {
+            double c = c0 + (c1 - c0) * (k + 0.5) / sub;
+            double sn = sqrt(1 - c * c);
+            il_vec3 d = il_frame_to_world(&f, v3((float)sn, 0, (float)c));
+            il_light_sample ls;
+            if (il_light_sample_at(s, v3_add(v3(0, 2, 0), d), 0.5f, v2(0.5f, 0.5f), &ls))
+                pt_i += ls.radiance.x * ls.dist * ls.dist;
+        }
+        pt_i /= sub;
+        /* Each photon of a bin carries the same power: the relative error
+         * is about 1/sqrt(count); allow four of it. */
+        CHECK_REL(photon_i, pt_i, fmax(0.02, 4.0 / sqrt(bin_count[b] + 1)));
+    }
+    il_scene_release(s);
+}
+
+static void test_area(bool two_sided)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    il_vec3 le = v3(1.0f, 0.5f, 0.25f);
+    uint32_t m = add_material(s, (il_material_desc){.emission = le, .two_sided = two_sided});
+    /* 2 x 1 at y = 1, facing down: cross(ex, ey) = cross(x, z) = -y. */
+    add_quad(s, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 0.5f), m);
+    commit(s);
+    double a = 2.0, k = PI_D * a * (two_sided ? 2 : 1);
+    il_vec3 nrm = v3(0, -1, 0);
+    stats st = run(s, nrm, two_sided ? -1.0f : 0.0f, v3(0, 0, 0), 0.0f);
+    CHECK(st.failed == 0);
+    CHECK(st.outside == 0);
+    CHECK_REL(st.power[0], 1.0 * k, 1e-4);
+    CHECK_REL(st.power[1], 0.5 * k, 1e-4);
+    CHECK_REL(st.power[2], 0.25 * k, 1e-4);
+    /* Cosine emission: mean cos theta = 2/3 about the emitting face. */
+    CHECK_NEAR(st.mean_abs_cos, 2.0 / 3.0, 0.003);
+    CHECK_NEAR(st.mean_cos, two_sided ? 0.0 : 2.0 / 3.0, 0.006);
+
+    /* Points on the quad, spread evenly, and the ray starts on the side it leaves by. */
+    il_pcg32 rng = il_pcg32_seed(1, 2);
+    uint32_t bad = 0, left = 0;
+    for (int i = 0; i < 20000; i++) {
+        il_pm_emission e;
+        if (!emit(s, &rng, &e))
+            continue;
+        if (fabsf(e.p.y - 1.0f) > 1e-5f || fabsf(e.p.x) > 1.0001f || fabsf(e.p.z) > 0.5001f)
+            bad++;
+        if (v3_dot(v3_sub(e.org, e.p), e.dir) <= 0.0f || fabsf(e.n.y + 1.0f) > 1e-5f)
+            bad++;
+        if (e.p.x < 0.0f)
+            left++;
+    }
+    CHECK(bad == 0);
+    CHECK_NEAR(left / 20000.0, 0.5, 0.015);
+    il_scene_release(s);
+}
+
+/* Directional: a disk of radius R, so a quarter of the photons pass within
+ * R/2 of the centre; power E pi R^2. */
+static void test_directional(void)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    il_vec3 dir = v3_normalize(v3(1, -2, 0.5f));
+    add_light(s, (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = dir,
+                                 .intensity = v3(1, 2, 0.5f)});
+    commit(s);
+    double r = s->scene_radius;
+    stats st = run(s, dir, 0.99999f, s->scene_center, (float)(0.5 * r));
+    CHECK(st.failed == 0);
+    CHECK(st.outside == 0);
+    CHECK_REL(st.power[0], 1 * PI_D * r * r, 1e-4);
+    CHECK_REL(st.power[1], 2 * PI_D * r * r, 1e-4);
+    CHECK_NEAR(st.frac_near, 0.25, 0.004);
+    /* Every origin is on the disk outside the bounding sphere. */
+    il_pcg32 rng = il_pcg32_seed(9, 9);
+    uint32_t bad = 0;
+    for (int i = 0; i < 10000; i++) {
+        il_pm_emission e;
+        emit(s, &rng, &e);
+        il_vec3 d = v3_sub(e.org, s->scene_center);
+        if (fabs(v3_dot(d, dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
+            bad++;
+    }
+    CHECK(bad == 0);
+    il_scene_release(s);
+}
+
+/* Environment: uniform directions, power 4 pi^2 R^2 L (lights.c), and the
+ * flux through a sphere of radius R/2 is L 4 pi pi (R/2)^2: a quarter. */
+static void test_environment(void)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    il_environment_desc env = {.radiance = v3(0.5f, 1, 2)};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    commit(s);
+    double r = s->scene_radius;
+    stats st = run(s, v3(0, 1, 0), -1.0f, s->scene_center, (float)(0.5 * r));
+    CHECK(st.failed == 0);
+    double k = 4 * PI_D * PI_D * r * r;
+    CHECK_REL(st.power[0], 0.5 * k, 1e-4);
+    CHECK_REL(st.power[2], 2 * k, 1e-4);
+    for (int c = 0; c < 3; c++)
+        CHECK_NEAR(st.mean_dir[c], 0.0, 0.006);
+    CHECK_NEAR(st.mean_abs_cos, 0.5, 0.004);
+    CHECK_NEAR(st.frac_near, 0.25, 0.004);
+    il_scene_release(s);
+}
+
+/* Two lights of power 1 : 3 (and an area light): photons split in
+ * proportion to power, each light's share of the power is its own. */
+static void test_split(void)
+{
+    il_scene *s = new_scene();
+    add_floor(s);
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(-1, 1, 0), .intensity = v3s(1)});
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(1, 1, 0), .intensity = v3s(3)});
+    /* An area light of power pi * 4 * 2 = 8 pi (8 : 4 pi : 12 pi). */
+    uint32_t m = add_material(s, (il_material_desc){.emission = v3s(2)});
+    add_quad(s, v3(0, 2, 0), v3(1, 0, 0), v3(0, 0, 1), m);
+    commit(s);
+    double phi[3] = {4 * PI_D, 12 * PI_D, 8 * PI_D}, total = phi[0] + phi[1] + phi[2];
+    double count[3] = {0}, power[3] = {0};
+    uint32_t unequal = 0;
+    il_pcg32 rng = il_pcg32_seed(4, 4);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_pm_emission e;
+        if (!emit(s, &rng, &e))
+            continue;
+        const il_light *l = &s->lights[e.light];
+        int k = l->kind == IL_LIGHTK_AREA ? 2 : (l->position.x < 0 ? 0 : 1);
+        count[k] += 1;
+        power[k] += e.power.y;
+        if (fabs(e.power.y - total) > 1e-4 * total)
+            unequal++;
+    }
+    CHECK(unequal == 0);   /* every photon carries the same power */
+    for (int k = 0; k < 3; k++) {
+        CHECK_NEAR(count[k] / N_PHOTONS, phi[k] / total, 0.004);
+        CHECK_REL(power[k] / N_PHOTONS, phi[k], 0.015);
+    }
+    il_scene_release(s);
+}
+
+int main(void)
+{
+    test_point();
+    test_spot(30.0f, 5.0f, (float)cos(30.0 * PI_D / 180.0));
+    test_spot(60.0f, 0.0f, (float)cos(60.0 * PI_D / 180.0));
+    test_spot(120.0f, 0.0f, (float)cos(120.0 * PI_D / 180.0));   /* wider than a hemisphere */
+    test_spot(120.0f, 2.0f, 0.0f);   /* cos^n ends at 90 degrees */
+    test_area(false);
+    test_area(true);
+    test_directional();
+    test_environment();
+    test_split();
+    return check_report();
+}
