@@ -20,7 +20,8 @@ const char cli_hr_help[] =
     "                         SPLASH-2's 2000 in a room about 1700 units wide)\n"
     "  --energy-eps X         stop when the relative change of total energy < X,\n"
     "                         1e-9 to 1 (default 0.005)\n"
-    "  --vis-rays N           visibility rays per link, 1 to 4096 (default 16)\n"
+    "  --vis-rays N           visibility rays per link, 1 to 4096 (default 16; with\n"
+    "                         16, 64, 256, ... a link may settle after 4)\n"
     "  --max-iterations N     at most N gather + push-pull iterations, 1 to 100000\n"
     "                         (default 100)\n";
 

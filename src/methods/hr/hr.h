@@ -20,9 +20,10 @@
  * patch and its quadtree path; all random numbers are keyed by ids; an
  * element's children are a pure function of the element (created by
  * whichever thread gets there first, published with a compare-and-swap);
- * each receiver root's links are refined and gathered by exactly one task in
- * a fixed order.  So elements, links and radiances do not depend on the
- * thread count or timing. */
+ * each element's links are refined by one task in a fixed order (its
+ * parent's task hands links down, then its own task, started after that,
+ * refines them) and gathered by one task.  So elements, links and
+ * radiances do not depend on the thread count or timing. */
 #ifndef IL_METHODS_HR_HR_H
 #define IL_METHODS_HR_HR_H
 
@@ -30,6 +31,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include "core/sampling.h"
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "methods/patch_mesh.h"
@@ -63,7 +65,9 @@ typedef struct il_hr_elem il_hr_elem;
 typedef struct il_hr_link {
     il_hr_elem *src;
     float ff;                  /* F_rs: form factor from the receiver to src */
-    float err_ff;              /* the refinement oracle's form-factor bound */
+    float err_ff;              /* the refinement oracle's form-factor bound; 0 when
+                                  the link can never be split (both elements at
+                                  the smallest size) */
     float vis;                 /* visible fraction in [0, 1] */
     float vis_bound;           /* the oracle's visibility: an upper bound of vis */
     struct il_hr_link *next;
@@ -132,6 +136,9 @@ typedef struct il_hr_solver {
     float plane_eps;                /* distance below which a point is on a plane */
     bool delta_lights, sky;         /* direct light to add to the leaves' emission */
     uint32_t *order;                /* roots by decreasing work (scheduling only) */
+    uint32_t *vis_strata;           /* il_hr_vis_strata: vis_rays entries */
+    uint32_t vis_m;                 /* visibility strata per side */
+    bool vis_pow2;                  /* vis_m a power of two (> 1), vis_rays = vis_m^2 */
     il_hr_stats stats;
 } il_hr_solver;
 
@@ -151,8 +158,18 @@ static inline il_hr_elem *il_hr_children_get(const il_hr_elem *e)
 /* Fills a root element from mesh patch i; returns the rays it cast. */
 uint32_t il_hr_elem_root(const il_hr_solver *s, uint32_t i, il_hr_elem *out);
 /* The point at (u, v) of the unit square mapped onto the element (bilinear
- * for quads, the area-preserving square-to-triangle map for triangles). */
-il_vec3 il_hr_elem_point(const il_hr_elem *e, float u, float v);
+ * for quads, the area-preserving square-to-triangle map for triangles).
+ * Inline: the visibility rays draw two per ray. */
+static inline il_vec3 il_hr_elem_point(const il_hr_elem *e, float u, float v)
+{
+    const il_vec3 *c = e->corners;
+    if (e->num_corners == 4)
+        return v3_add(v3_add(v3_scale(c[0], (1 - u) * (1 - v)), v3_scale(c[1], u * (1 - v))),
+                      v3_add(v3_scale(c[2], u * v), v3_scale(c[3], (1 - u) * v)));
+    il_vec2 b = il_sample_triangle(v2(u, v));
+    return v3_add(v3_add(v3_scale(c[0], 1.0f - b.x - b.y), v3_scale(c[1], b.x)),
+                  v3_scale(c[2], b.y));
+}
 
 /* The fraction of e's area not buried inside a solid, by probe rays;
  * *rays_cast: how many it cast. */
@@ -164,16 +181,41 @@ static inline il_vec3 il_hr_exposed_radiance(const il_hr_elem *e)
     return e->exposure > 0.0f ? v3_scale(e->radiance, 1.0f / e->exposure) : v3s(0.0f);
 }
 
-/* A new link (r gathers from src) with its form factor and visibility;
+/* A new link (r gathers from src) with its form factor; its visibility is
+ * left unknown (vis < 0) for il_hr_link_visibility, or 0 when F is 0.
  * NULL when out of memory. */
 il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
                             il_hr_elem *src);
+/* Casts link l's visibility rays (r: its receiver).  parent_visible: the
+ * link it replaces had every ray pass, so a few rays that all pass give
+ * V = 1; split_if_visible: the refinement splits l as soon as any ray
+ * passes, so the first one that passes ends it (hr_link.c). */
+void il_hr_link_visibility(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
+                           il_hr_link *l, bool parent_visible, bool split_if_visible);
+/* The unoccluded form factor from a differential area at p (normal n) to
+ * the triangle or quad poly (hr_ff.c: methods/ff_analytic.c's formula with
+ * a cheaper arctangent; they agree within 1e-8). */
+double il_hr_ff_point_polygon(il_vec3 p, il_vec3 n, const il_vec3 *poly, uint32_t count);
+/* The same from each of npts <= 4 points with normal n, out[i] for
+ * pts[i] (several at once: vectorized when nothing needs clipping). */
+void il_hr_ff_points_polygon(const il_vec3 *pts, uint32_t npts, il_vec3 n, const il_vec3 *poly,
+                             uint32_t count, double *out);
+/* The order in which a link's n visibility rays visit the strata of an
+ * m x m grid (m = ceil(sqrt(n))): strata[k] = column | row << 16.  When n
+ * is the square of a power of two (16 by default, *pow2 set) the order is
+ * bit-reversed and interleaved (k's even bits reversed give the column,
+ * its odd bits the row), so each run of 4 draws from a multiple of 4 covers
+ * the four quadrants: the first 4 rays are a 2 x 2 stratified set of their
+ * own; otherwise row by row. */
+void il_hr_vis_strata(uint32_t n, uint32_t *m, bool *pow2, uint32_t *strata);
 /* Whether a and b face each other: each has a point strictly in front of
  * the other's plane. */
 bool il_hr_facing(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *b);
 
-/* BF refinement of every link received by root r's tree (one task). */
-void il_hr_refine_root(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *root);
+/* BF refinement of every link received by e's subtree: e's own links,
+ * then each child's subtree (in OpenMP tasks near the root, when called
+ * inside a parallel region); the running thread's pool. */
+void il_hr_refine_tree(const il_hr_solver *s, il_hr_elem *e);
 /* Gather (H = sum F V B) over root r's tree, then push-pull it: leaves get
  * radiance = emit + rho * (H pushed down), inner elements the area mean. */
 void il_hr_gather_root(il_hr_elem *root);

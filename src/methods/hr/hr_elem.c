@@ -52,17 +52,6 @@ static il_vec3 emission(const il_hr_solver *s, const il_hr_elem *e)
     return le;
 }
 
-il_vec3 il_hr_elem_point(const il_hr_elem *e, float u, float v)
-{
-    const il_vec3 *c = e->corners;
-    if (e->num_corners == 4)
-        return v3_add(v3_add(v3_scale(c[0], (1 - u) * (1 - v)), v3_scale(c[1], u * (1 - v))),
-                      v3_add(v3_scale(c[2], u * v), v3_scale(c[3], (1 - u) * v)));
-    il_vec2 b = il_sample_triangle(v2(u, v));
-    return v3_add(v3_add(v3_scale(c[0], 1.0f - b.x - b.y), v3_scale(c[1], b.x)),
-                  v3_scale(c[2], b.y));
-}
-
 /* Emitters count as fully exposed: their emission is per unit of their
  * whole area, and a lamp half inside a solid is a modelling oddity. */
 static uint32_t set_exposure(const il_hr_solver *s, const il_hr_elem *parent, il_hr_elem *e)

@@ -12,9 +12,18 @@
  * each child of s (that faces r); the new links are refined in turn.  A
  * link no ray of which could pass (V bound 0) is never split.
  *
- * Only the task of r's root touches r's link list, so the order of every
- * list is fixed; children are shared through il_hr_children (race-free). */
+ * Visibility rays are cast when a link first comes here (hr_link.c).
+ *
+ * r's link list is touched by the task refining r's parent (which hands
+ * links down to r) and then by r's own task, started after it: the order of
+ * every list is fixed; children are shared through il_hr_children
+ * (race-free). */
+#include <omp.h>
+
 #include "methods/hr/hr.h"
+
+/* Quadtree levels whose children are refined in tasks of their own. */
+#define TASK_LEVELS 3
 
 static void append(il_hr_elem *r, il_hr_link *l)
 {
@@ -27,20 +36,25 @@ static void append(il_hr_elem *r, il_hr_link *l)
     r->num_links++;
 }
 
-static bool wants_split(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l)
+/* Whether the link is split when its visibility bound is vis_bound. */
+static bool splits(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l, float vis_bound)
 {
-    if (!(l->vis_bound > 0.0f))
+    if (!(vis_bound > 0.0f && l->err_ff > 0.0f))
         return false;
-    float bf = l->err_ff * il_luminance(il_hr_exposed_radiance(l->src)) * l->vis_bound;
+    float bf = l->err_ff * il_luminance(il_hr_exposed_radiance(l->src)) * vis_bound;
     if (!(bf > s->set.bf_eps * s->b_ref))
         return false;
     const il_hr_elem *big = r->area >= l->src->area ? r : l->src;
     return big->area > s->area_min && big->level < IL_HR_MAX_LEVEL;
 }
 
-static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, il_hr_link *l)
+/* parent_visible: the link l replaced had every visibility ray pass. */
+static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, il_hr_link *l,
+                        bool parent_visible)
 {
-    if (!wants_split(s, r, l) || pool->failed) {
+    if (l->vis < 0.0f)
+        il_hr_link_visibility(s, pool, r, l, parent_visible, splits(s, r, l, 1.0f));
+    if (!splits(s, r, l, l->vis_bound) || pool->failed) {
         append(r, l);
         return;
     }
@@ -51,6 +65,7 @@ static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, 
         append(r, l);
         return;
     }
+    bool visible = l->vis >= 1.0f;
     il_hr_pool_put_link(pool, l);
     for (uint32_t k = 0; k < 4; k++) {
         il_hr_elem *rr = split_receiver ? &kids[k] : r, *ss = split_receiver ? src : &kids[k];
@@ -59,26 +74,40 @@ static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, 
         il_hr_link *nl = il_hr_link_make(s, pool, rr, ss);
         if (!nl)
             return;
-        refine_link(s, pool, rr, nl);
+        refine_link(s, pool, rr, nl, visible);
     }
 }
 
-void il_hr_refine_root(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *e)
+void il_hr_refine_tree(const il_hr_solver *s, il_hr_elem *e)
 {
+    /* The pool of the thread running this task (tasks are tied: the
+     * thread does not change while one runs). */
+    il_hr_pool *pool = &s->pools[omp_get_thread_num()];
     il_hr_link *l = e->links;
     e->links = e->links_tail = NULL;
     e->num_links = 0;
     while (l) {
         il_hr_link *next = l->next;
-        refine_link(s, pool, e, l);
+        refine_link(s, pool, e, l, false);
         l = next;
     }
-    /* Children another task made meanwhile (source-side) have no links:
+    /* e's links are final now, and so are the lists it handed down to its
+     * children: each child's subtree can go on in a task of its own (only
+     * near the root, where subtrees are big enough to pay for a task).
+     * Children another task made meanwhile (source-side) have no links:
      * visiting them or not changes nothing. */
     il_hr_elem *kids = il_hr_children_get(e);
-    if (kids)
-        for (uint32_t k = 0; k < 4; k++)
-            il_hr_refine_root(s, pool, &kids[k]);
+    if (!kids)
+        return;
+    for (uint32_t k = 0; k < 4; k++) {
+        il_hr_elem *c = &kids[k];
+        if (e->level < TASK_LEVELS && s->set.threads > 1) {
+#pragma omp task firstprivate(c)
+            il_hr_refine_tree(s, c);
+        } else {
+            il_hr_refine_tree(s, c);
+        }
+    }
 }
 
 void il_hr_gather_root(il_hr_elem *e)

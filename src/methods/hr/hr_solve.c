@@ -5,11 +5,13 @@
  * the radiances of the previous push-pull, so the order of tasks does not
  * matter.
  *
- * Parallelism: OpenMP parallel loops over receiver roots with dynamic
- * scheduling (work stealing by the runtime), biggest trees first; each root
- * is one task for initial links, refinement (with its visibility rays) and
- * gather/push-pull.  No lock: per-thread pools, children published by CAS,
- * link lists owned by their root's task. */
+ * Parallelism (work stealing by the OpenMP runtime, biggest trees first):
+ * initial links (form factors only) in a dynamic loop over receiver roots;
+ * refinement, with its visibility rays, in one task per root that hands the
+ * subtrees of the top quadtree levels to tasks of their own
+ * (il_hr_refine_tree); gather and push-pull in dynamic loops over roots.
+ * No lock: per-thread pools, children published by CAS, each link list
+ * built by one task at a time in a fixed order. */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -92,6 +94,7 @@ void il_hr_solver_free(il_hr_solver *s)
     free(s->pools);
     free(s->roots);
     free(s->order);
+    free(s->vis_strata);
     memset(s, 0, sizeof *s);
 }
 
@@ -102,8 +105,10 @@ static il_status setup(il_hr_solver *s, il_error *err)
     s->roots = il_malloc((size_t)(n ? n : 1u) * sizeof *s->roots, err);
     s->order = il_malloc((size_t)(n ? n : 1u) * sizeof *s->order, err);
     s->pools = il_calloc((size_t)nt, sizeof *s->pools, err);
-    if (!s->roots || !s->order || !s->pools)
+    s->vis_strata = il_malloc((size_t)s->set.vis_rays * sizeof *s->vis_strata, err);
+    if (!s->roots || !s->order || !s->pools || !s->vis_strata)
         return IL_ERR_MEMORY;
+    il_hr_vis_strata(s->set.vis_rays, &s->vis_m, &s->vis_pow2, s->vis_strata);
     for (int t = 0; t < nt; t++)
         il_hr_pool_init(&s->pools[t]);
     uint64_t rays = 0;
@@ -178,9 +183,16 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     double prev = total_energy(s);
     for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f; it++) {
         double t1 = omp_get_wtime();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-        for (uint32_t i = 0; i < n; i++)
-            il_hr_refine_root(s, &s->pools[omp_get_thread_num()], &s->roots[s->order[i]]);
+        /* One task per root, biggest first; a root's subtrees become tasks
+         * of their own near the top (il_hr_refine_tree), so a scene of a
+         * few big patches (the Cornell box's 17) still balances. */
+#pragma omp parallel num_threads(nt)
+#pragma omp single
+        for (uint32_t i = 0; i < n; i++) {
+            il_hr_elem *root = &s->roots[s->order[i]];
+#pragma omp task firstprivate(root)
+            il_hr_refine_tree(s, root);
+        }
         double t2 = omp_get_wtime();
         st->seconds_refine += t2 - t1;
         if (pools_failed(s)) {
