@@ -13,6 +13,9 @@ il_vec2 il_sample_concentric_disk(il_vec2 u);
 /* Directions in the local frame (z up). */
 il_vec3 il_sample_cosine_hemisphere(il_vec2 u);   /* pdf cos(theta)/pi */
 float il_cosine_hemisphere_pdf(float cos_theta);
+/* il_sample_cosine_hemisphere of u[0..n-1] into out, bit for bit, eight at
+ * a time in AVX2 lanes where the CPU has it. */
+void il_sample_cosine_hemisphere_n(const il_vec2 *u, il_vec3 *out, uint32_t n);
 il_vec3 il_sample_uniform_hemisphere(il_vec2 u);  /* pdf 1/(2 pi) */
 il_vec3 il_sample_uniform_sphere(il_vec2 u);      /* pdf 1/(4 pi) */
 il_vec3 il_sample_uniform_cone(il_vec2 u, float cos_max); /* pdf 1/(2 pi (1-cos_max)) */
@@ -30,6 +33,22 @@ static inline float il_power_heuristic(float pdf_f, float pdf_g)
 {
     float f = pdf_f * pdf_f, g = pdf_g * pdf_g;
     return f + g > 0.0f ? f / (f + g) : 0.0f;
+}
+
+/* The last bin i in [0, n-1] with cdf[i] <= u, for a non-decreasing cdf
+ * with cdf[0] <= u (n >= 1): a binary search without branches on the data
+ * (Khuong & Morin 2017, "Array Layouts for Comparison-Based Searching",
+ * branch-free search), so random u costs no mispredicted branches.  Bins of
+ * zero width are never chosen: if cdf[i] == cdf[i+1] <= u, i+1 qualifies. */
+static inline uint32_t il_cdf_find(const float *cdf, uint32_t n, float u)
+{
+    uint32_t lo = 0, len = n;
+    while (len > 1) {
+        uint32_t half = len / 2;
+        lo = cdf[lo + half] <= u ? lo + half : lo;   /* a conditional move */
+        len -= half;
+    }
+    return lo;
 }
 
 /* A piecewise-constant distribution over n bins of [0,1). */

@@ -25,7 +25,12 @@ il_vec3 il_camera_sample(const il_camera_pass_ctx *ctx, uint32_t x, uint32_t y, 
                          il_sampler *smp)
 {
     il_sampler_start(smp, ctx->sampler, ctx->seed, (uint64_t)y * ctx->width + x, i);
-    il_vec2 off = il_filter_offset(ctx->filter, il_sampler_2d(smp));
+    return il_camera_sample_dir(ctx, x, y, il_sampler_2d(smp));
+}
+
+il_vec3 il_camera_sample_dir(const il_camera_pass_ctx *ctx, uint32_t x, uint32_t y, il_vec2 u)
+{
+    il_vec2 off = il_filter_offset(ctx->filter, u);
     return il_camera_ray_dir(&ctx->cam, (float)x + off.x, (float)y + off.y);
 }
 

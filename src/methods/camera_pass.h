@@ -72,6 +72,12 @@ typedef void (*il_camera_tile_fn)(const void *method, const il_camera_pass_ctx *
 il_vec3 il_camera_sample(const il_camera_pass_ctx *ctx, uint32_t x, uint32_t y, uint32_t i,
                          il_sampler *sampler);
 
+/* The second half of il_camera_sample: the camera ray's direction through
+ * pixel (x, y) jittered by the 2D sample u (the sampler's first draw), for
+ * a caller that starts many samplers and draws their first pairs at once
+ * (il_sampler_2d_gather). */
+il_vec3 il_camera_sample_dir(const il_camera_pass_ctx *ctx, uint32_t x, uint32_t y, il_vec2 u);
+
 /* Adds sample radiance L to pixel (x, y), or drops it (counted in
  * tile->nonfinite) when NaN or Inf, which would poison the pixel for good. */
 void il_camera_tile_add(const il_camera_pass_ctx *ctx, il_camera_tile *tile, uint32_t x, uint32_t y,

@@ -190,6 +190,12 @@ il_vec3 il_bsdf_eval(const il_bsdf *b, il_vec3 wo, il_vec3 wi, float *pdf)
 
 bool il_bsdf_sample_dir(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u, il_bsdf_sample *out)
 {
+    return il_bsdf_sample_dir_cos(b, wo, u_lobe, u, NULL, out);
+}
+
+bool il_bsdf_sample_dir_cos(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u,
+                            const il_vec3 *cos_dir, il_bsdf_sample *out)
+{
     out->delta = false;
     out->pdf = 0.0f;
     out->f = out->weight = v3s(0.0f);
@@ -225,7 +231,7 @@ bool il_bsdf_sample_dir(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u, i
         il_frame rf = il_frame_from_normal(r);
         wi_l = il_frame_to_world(&rf, il_sample_phong_lobe(u, b->exponent));
     } else {
-        wi_l = il_sample_cosine_hemisphere(u);
+        wi_l = cos_dir ? *cos_dir : il_sample_cosine_hemisphere(u);
     }
     if (wi_l.z <= IL_BSDF_EPS)
         return false;   /* the lobe dipped below the horizon: no energy */

@@ -32,6 +32,11 @@ void il_bsdf_init(il_bsdf *b, const il_scene *scene, const il_surface *s);
 il_vec3 il_bsdf_eval(const il_bsdf *b, il_vec3 wo, il_vec3 wi, float *pdf);
 /* Draws wi; false when the sample carries no energy (absorbed). */
 bool il_bsdf_sample_dir(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u, il_bsdf_sample *out);
+/* il_bsdf_sample_dir with il_sample_cosine_hemisphere(u) already computed
+ * in *cos_dir (NULL: computed here when needed), for callers that warp
+ * many samples at once (il_sample_cosine_hemisphere_n). */
+bool il_bsdf_sample_dir_cos(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u,
+                            const il_vec3 *cos_dir, il_bsdf_sample *out);
 /* True when every lobe is a delta (MIRROR, DIELECTRIC): skip light sampling. */
 bool il_bsdf_is_delta(const il_bsdf *b);
 

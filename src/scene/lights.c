@@ -202,12 +202,15 @@ il_status il_lights_build(il_scene *s, il_error *err)
     return IL_OK;
 }
 
-/* A read-only view of the scene's selection table as an il_distrib1d (the
- * pmf is read from light_pmf, so func is not needed). */
-static uint32_t select_light(const il_scene *s, float u)
+/* The light il_distrib1d_sample_discrete picks from the scene's selection
+ * CDF for u (clamped into [0, 1) the same way). */
+static inline uint32_t select_light(const il_scene *s, float u)
 {
-    il_distrib1d d = {.n = s->num_lights, .func = s->light_pmf, .cdf = s->light_cdf, .integral = 0.0f};
-    return il_distrib1d_sample_discrete(&d, u, NULL, NULL);
+    if (!(u >= 0.0f))
+        u = 0.0f;
+    if (u > 0x1.fffffep-1f)
+        u = 0x1.fffffep-1f;
+    return il_cdf_find(s->light_cdf, s->num_lights, u);
 }
 
 il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w)

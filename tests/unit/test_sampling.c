@@ -361,6 +361,68 @@ static void test_pdf_values(void)
     CHECK(outside == 0);
 }
 
+/* il_sample_cosine_hemisphere_n (eight lanes of AVX2 where the CPU has it)
+ * gives il_sample_cosine_hemisphere's results bit for bit: random points,
+ * the corners, the centre, both diagonals and the axes of the concentric
+ * map, for every count from 0 to 19 (partial groups of eight). */
+static void test_cosine_hemisphere_n(void)
+{
+    enum { N = 4096 };
+    static il_vec2 u[N];
+    static il_vec3 a[N], b[N];
+    il_pcg32 rng = il_pcg32_seed(77, 5);
+    uint32_t n = 0;
+    const float special[] = {0.0f, 0.25f, 0.5f, 0.75f, 0x1.fffffep-1f, 0x1p-24f, 0.5f - 0x1p-24f};
+    const uint32_t ns = sizeof special / sizeof special[0];
+    for (uint32_t i = 0; i < ns; i++)
+        for (uint32_t j = 0; j < ns; j++)
+            u[n++] = v2(special[i], special[j]);
+    while (n < N) {
+        float x = il_pcg32_float(&rng);
+        /* Every fourth point on a diagonal |2x-1| = |2y-1|. */
+        u[n] = (n % 4 == 0) ? v2(x, n % 8 == 0 ? x : 1.0f - x) : v2(x, il_pcg32_float(&rng));
+        n++;
+    }
+    for (uint32_t i = 0; i < N; i++)
+        a[i] = il_sample_cosine_hemisphere(u[i]);
+    il_sample_cosine_hemisphere_n(u, b, N);
+    CHECK(memcmp(a, b, sizeof a) == 0);
+    for (uint32_t count = 0; count < 20; count++) {
+        memset(b, 0xff, sizeof(il_vec3) * 21);
+        il_sample_cosine_hemisphere_n(u + 3, b, count);
+        CHECK(memcmp(a + 3, b, sizeof(il_vec3) * count) == 0);
+        CHECK(b[count].x != b[count].x);   /* nothing written past the end (NaN fill) */
+    }
+    /* The centre maps to the pole. */
+    il_sample_cosine_hemisphere_n(&(il_vec2){0.5f, 0.5f}, b, 1);
+    CHECK(b[0].x == 0.0f && b[0].y == 0.0f && b[0].z == 1.0f);
+}
+
+/* il_cdf_find (the branch-free search) against a linear scan for the last
+ * bin with cdf[i] <= u, on CDFs with zero-width bins, every length 1..40. */
+static void test_cdf_find(void)
+{
+    il_pcg32 rng = il_pcg32_seed(3, 9);
+    float cdf[41];
+    for (uint32_t n = 1; n <= 40; n++) {
+        cdf[0] = 0.0f;
+        for (uint32_t i = 1; i <= n; i++) /* about a third of the bins empty */
+            cdf[i] = cdf[i - 1] + (il_pcg32_float(&rng) < 0.33f ? 0.0f : il_pcg32_float(&rng));
+        for (uint32_t i = 1; i <= n; i++)
+            cdf[i] /= cdf[n] > 0.0f ? cdf[n] : 1.0f;
+        for (int k = 0; k < 200; k++) {
+            float u = k < 41 ? cdf[k % (n + 1)] : il_pcg32_float(&rng); /* bin edges too */
+            if (u >= 1.0f)
+                u = 0x1.fffffep-1f;
+            uint32_t want = 0;
+            for (uint32_t i = 0; i < n; i++)
+                if (cdf[i] <= u)
+                    want = i;
+            CHECK(il_cdf_find(cdf, n, u) == want);
+        }
+    }
+}
+
 int main(void)
 {
     g_alpha = chi2_significance(0.01, NUM_CHI2_TESTS);
@@ -384,5 +446,7 @@ int main(void)
     test_distrib1d();
     test_power_heuristic();
     test_pdf_values();
+    test_cosine_hemisphere_n();
+    test_cdf_find();
     return check_report();
 }

@@ -49,8 +49,8 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
  * outcome the caller reports with il_pt_shadow_result before the next
  * step, and returns false when the path ends (after its shadow ray).
  * A step at a hit with st->depth < max_depth draws the vertex's three 2D
- * samples from the sampler first thing; u_drawn, when not NULL, holds them
- * already drawn (il_sampler_2d_gather does that for many paths at once). */
+ * samples from the sampler first thing, and from the fourth bounce on
+ * (depth >= 3) one 1D roulette number last, when the path gets that far. */
 typedef struct il_pt_state {
     il_vec3 L, beta;
     il_vec3 prev_p;        /* the previous vertex */
@@ -64,9 +64,25 @@ typedef struct il_pt_state {
     uint64_t rays;         /* rays cast or to be cast so far */
 } il_pt_state;
 
+/* What a caller that shades many paths at once computed for one step ahead
+ * of time, with the values the step would compute itself, bit for bit. */
+typedef struct il_pt_drawn {
+    il_vec2 u[4];          /* the vertex's three 2D samples, in the order
+                              il_pt_step draws them; u[3].x the roulette number */
+    il_vec3 cos_dir;       /* il_sample_cosine_hemisphere(u[2]) */
+    bool roulette;         /* u[3] holds the roulette number (a Sobol sampler's
+                              next pair, whose first member il_sampler_1d gives) */
+} il_pt_drawn;
+
 void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir);
 bool il_pt_step(const il_scene *scene, il_pt_state *st, const il_hit *hit, il_sampler *sampler,
-                const il_vec2 *u_drawn, uint32_t max_depth, il_pt_strategy strategy);
+                uint32_t max_depth, il_pt_strategy strategy);
+/* il_pt_step with the hit's surface already known (il_scene_surface of
+ * hit; surf NULL on a miss) and, when `drawn` is not NULL, the vertex's
+ * samples already drawn (the sampler advanced past them). */
+bool il_pt_step_at(const il_scene *scene, il_pt_state *st, const il_hit *hit,
+                   const il_surface *surf, const il_pt_drawn *drawn, il_sampler *sampler,
+                   uint32_t max_depth, il_pt_strategy strategy);
 static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
 {
     if (!occluded)

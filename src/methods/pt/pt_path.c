@@ -45,7 +45,17 @@ void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir)
 }
 
 bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sampler *smp,
-                const il_vec2 *u_drawn, uint32_t max_depth, il_pt_strategy strategy)
+                uint32_t max_depth, il_pt_strategy strategy)
+{
+    il_surface surf;
+    if (hit)
+        il_scene_surface(s, hit->mesh, hit->prim, hit->b1, hit->b2, &surf);
+    return il_pt_step_at(s, st, hit, hit ? &surf : NULL, NULL, smp, max_depth, strategy);
+}
+
+bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const il_surface *sp,
+                   const il_pt_drawn *drawn, il_sampler *smp, uint32_t max_depth,
+                   il_pt_strategy strategy)
 {
     const il_tracer *tr = s->tracer;
     st->shadow = false;
@@ -61,8 +71,7 @@ bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sample
     }
     /* `depth` counts the scattering events before the current ray. */
     uint32_t depth = st->depth;
-    il_surface surf;
-    il_scene_surface(s, hit->mesh, hit->prim, hit->b1, hit->b2, &surf);
+    const il_surface surf = *sp;
     il_vec3 wo = v3_neg(st->ray.dir);
     const il_material *m = surf.material;
 
@@ -92,7 +101,7 @@ bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sample
      * (the roulette number, drawn last, only from the fourth bounce on).
      * The light choice and the BSDF lobe choice share one pair. */
     il_vec2 u_own[3];
-    const il_vec2 *u = u_drawn;
+    const il_vec2 *u = drawn ? drawn->u : NULL;
     if (!u) {
         il_sampler_2d_n(smp, u_own, 3);
         u = u_own;
@@ -125,7 +134,8 @@ bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sample
 
     /* BSDF sampling continues the path. */
     il_bsdf_sample bs;
-    if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_bsdf, &bs) || !il_sides_agree(&surf, wo, bs.wi))
+    if (!il_bsdf_sample_dir_cos(&b, wo, u_lobe, u_bsdf, drawn ? &drawn->cos_dir : NULL, &bs) ||
+        !il_sides_agree(&surf, wo, bs.wi))
         return false;
     il_vec3 beta = v3_mul(st->beta, bs.weight);
     if (v3_is_zero(beta) || !v3_is_finite(beta))
@@ -141,7 +151,8 @@ bool il_pt_step(const il_scene *s, il_pt_state *st, const il_hit *hit, il_sample
      * divide by q, which keeps the estimate unbiased. */
     if (depth >= 3) {
         float q = il_minf(v3_max_comp(beta), 0.95f);
-        if (!(il_sampler_1d(smp) < q)) {
+        float u_rr = drawn && drawn->roulette ? drawn->u[3].x : il_sampler_1d(smp);
+        if (!(u_rr < q)) {
             st->beta = beta;
             return false;
         }
@@ -162,7 +173,7 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
     for (;;) {
         il_hit hit;
         bool found = il_trace_closest(tr, &st.ray, &hit);
-        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, NULL, max_depth, strategy);
+        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, max_depth, strategy);
         if (st.shadow)
             il_pt_shadow_result(&st, il_trace_occluded(tr, &st.shadow_ray));
         if (!more)

@@ -14,6 +14,7 @@
  * reports, time limit and treatment of NaN samples, and this file only the
  * work of a tile (il_camera_pass_tiles), so the film is bit-identical to
  * il_camera_pass with il_pt_radiance, and the same with 1 or N threads. */
+#include "core/sampling.h"
 #include "methods/camera_pass.h"
 #include "methods/pt/pt.h"
 
@@ -24,22 +25,106 @@ typedef struct pt_method {
     const il_scene *scene;
     uint32_t max_depth;
     il_pt_strategy strategy;
+    bool prefetch;         /* the triangle records outgrow the caches (see wave_surfaces) */
 } pt_method;
 
-/* One wave: up to PT_WAVE paths with their samplers and pixels, and the
- * gather buffers for the stream calls; one per thread (about 70 KB), the
- * camera pass's scratch memory. */
+/* Above this many bytes of triangle records (il_tri_geom) the surface reads
+ * miss the caches and wave_surfaces prefetches them; below, the prefetch
+ * passes would only cost time. */
+#define PT_PREFETCH_BYTES (512u * 1024u)
+
+/* One wave: up to PT_WAVE paths with their samplers and pixels, the gather
+ * buffers for the stream calls, and what is computed for all paths of a
+ * vertex before any is shaded (surfaces, samples, cosine directions); one
+ * per thread (about 140 KB), the camera pass's scratch memory.  Arrays
+ * indexed by path are [j], by position in the active list [a]. */
 typedef struct pt_wave {
     il_pt_state st[PT_WAVE];
     il_sampler smp[PT_WAVE];
     uint32_t px[PT_WAVE], py[PT_WAVE];
     uint32_t active[PT_WAVE], shadowed[PT_WAVE];
     il_ray rays[PT_WAVE];
-    il_hit hits[PT_WAVE];
+    il_hit hits[PT_WAVE];          /* [a] */
+    il_surface surf[PT_WAVE];      /* [a] */
     bool occluded[PT_WAVE];
-    uint32_t drawing[PT_WAVE];    /* the paths that draw samples at this vertex */
-    il_vec2 u[PT_WAVE][3];        /* their three 2D samples, in that order */
+    il_pt_drawn drawn[PT_WAVE];    /* [a], for the paths that draw samples */
+    uint32_t list[2][PT_WAVE];     /* paths drawing 3 pairs, and 4 (with the roulette) */
+    uint32_t slot[2][PT_WAVE];     /* their [a] */
+    il_vec2 u[PT_WAVE * 4];        /* il_sampler_2d_gather's output */
+    il_vec2 u_cos[PT_WAVE];        /* the BSDF pairs, warped together */
+    il_vec3 cos_dir[PT_WAVE];
 } pt_wave;
+
+/* The surfaces of the wave's hits.  A big scene's triangle records and
+ * vertex normals are mostly not in the cache when the hits come back from
+ * Embree; touching them for all hits first (the records, then the vertices
+ * the records name) lets the memory system fetch them in parallel instead
+ * of one miss after the other inside il_scene_surface. */
+static void wave_surfaces(const pt_method *pm, pt_wave *w, uint32_t num)
+{
+    const il_scene *s = pm->scene;
+    for (uint32_t a = 0; a < num && pm->prefetch; a++) {
+        const il_hit *h = &w->hits[a];
+        if (h->mesh != IL_HIT_NONE && s->meshes[h->mesh].geom)
+            __builtin_prefetch(&s->meshes[h->mesh].geom[h->prim]);
+    }
+    for (uint32_t a = 0; a < num && pm->prefetch; a++) {
+        const il_hit *h = &w->hits[a];
+        if (h->mesh == IL_HIT_NONE)
+            continue;
+        const il_mesh *m = &s->meshes[h->mesh];
+        if (!m->geom)
+            continue;
+        const uint32_t *v = m->geom[h->prim].v;
+        for (int k = 0; k < 3; k++) {
+            if (m->normals)
+                __builtin_prefetch(&m->normals[v[k]]);
+            if (m->uvs)
+                __builtin_prefetch(&m->uvs[v[k]]);
+        }
+    }
+    for (uint32_t a = 0; a < num; a++) {
+        const il_hit *h = &w->hits[a];
+        if (h->mesh != IL_HIT_NONE)
+            il_scene_surface(s, h->mesh, h->prim, h->b1, h->b2, &w->surf[a]);
+    }
+}
+
+/* The samples of every path that draws them at this vertex (a hit below
+ * the maximum depth: see il_pt_step), all drawn together: three pairs, and
+ * with a Sobol sampler from the fourth bounce on a fourth whose first member
+ * is the roulette number il_sampler_1d would give (a PCG sampler's 1D draw
+ * takes one number, not a pair, so there it stays in il_pt_step_at).  Then
+ * the cosine-weighted directions of the BSDF pairs, together. */
+static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
+{
+    uint32_t n[2] = {0, 0};
+    for (uint32_t a = 0; a < num; a++) {
+        uint32_t j = w->active[a];
+        if (w->hits[a].mesh == IL_HIT_NONE || w->st[j].depth >= pm->max_depth)
+            continue;
+        int r = w->st[j].depth >= 3 && w->smp[j].type == IL_SAMPLER_SOBOL;
+        w->list[r][n[r]] = j;
+        w->slot[r][n[r]++] = a;
+    }
+    uint32_t num_cos = 0;
+    for (int r = 0; r < 2; r++) {
+        uint32_t pairs = 3u + (uint32_t)r;
+        il_sampler_2d_gather(w->smp, w->list[r], n[r], pairs, w->u);
+        for (uint32_t k = 0; k < n[r]; k++) {
+            il_pt_drawn *d = &w->drawn[w->slot[r][k]];
+            for (uint32_t p = 0; p < pairs; p++)
+                d->u[p] = w->u[k * pairs + p];
+            d->roulette = r == 1;
+            w->u_cos[num_cos++] = d->u[2];
+        }
+    }
+    il_sample_cosine_hemisphere_n(w->u_cos, w->cos_dir, num_cos);
+    num_cos = 0;
+    for (int r = 0; r < 2; r++)
+        for (uint32_t k = 0; k < n[r]; k++)
+            w->drawn[w->slot[r][k]].cos_dir = w->cos_dir[num_cos++];
+}
 
 /* Runs paths 0..n-1 of the wave to their ends. */
 static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
@@ -52,24 +137,17 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
         for (uint32_t a = 0; a < num_active; a++)
             w->rays[a] = w->st[w->active[a]].ray;
         il_trace_closest_n(tr, w->rays, w->hits, num_active);
+        wave_surfaces(pm, w, num_active);
+        wave_samples(pm, w, num_active);
 
-        /* The vertex's samples of every path that will draw them (a hit
-         * below the maximum depth: see il_pt_step), all drawn together. */
-        uint32_t num_drawing = 0;
+        uint32_t num_shadow = 0, still = 0;
         for (uint32_t a = 0; a < num_active; a++) {
             uint32_t j = w->active[a];
-            if (w->hits[a].mesh != IL_HIT_NONE && w->st[j].depth < pm->max_depth)
-                w->drawing[num_drawing++] = j;
-        }
-        il_sampler_2d_gather(w->smp, w->drawing, num_drawing, 3, &w->u[0][0]);
-
-        uint32_t num_shadow = 0, still = 0, d = 0;
-        for (uint32_t a = 0; a < num_active; a++) {
-            uint32_t j = w->active[a];
-            const il_hit *hit = w->hits[a].mesh != IL_HIT_NONE ? &w->hits[a] : NULL;
-            const il_vec2 *u = d < num_drawing && w->drawing[d] == j ? w->u[d++] : NULL;
-            bool more = il_pt_step(pm->scene, &w->st[j], hit, &w->smp[j], u, pm->max_depth,
-                                   pm->strategy);
+            bool hit = w->hits[a].mesh != IL_HIT_NONE;
+            bool drawing = hit && w->st[j].depth < pm->max_depth;
+            bool more = il_pt_step_at(pm->scene, &w->st[j], hit ? &w->hits[a] : NULL,
+                                      hit ? &w->surf[a] : NULL, drawing ? &w->drawn[a] : NULL,
+                                      &w->smp[j], pm->max_depth, pm->strategy);
             if (w->st[j].shadow) {
                 w->shadowed[num_shadow] = j;
                 w->rays[num_shadow++] = w->st[j].shadow_ray;
@@ -89,7 +167,8 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
 
 /* The tile's samples in waves taken in the order the camera pass wants them
  * (pixel by pixel, samples in increasing index), and added to the film in
- * that order. */
+ * that order.  The samplers of a wave are started first and their first
+ * pairs (the pixel jitter, as il_camera_sample draws it) drawn together. */
 static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
     const pt_method *pm = method;
@@ -100,10 +179,10 @@ static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_ca
         /* Fill a wave. */
         uint32_t n = 0;
         while (n < PT_WAVE && y < tile->y1) {
-            il_vec3 dir = il_camera_sample(ctx, x, y, i, &w->smp[n]);
-            il_pt_begin(&w->st[n], ctx->cam.position, dir);
+            il_sampler_start(&w->smp[n], ctx->sampler, ctx->seed, (uint64_t)y * ctx->width + x, i);
             w->px[n] = x;
             w->py[n] = y;
+            w->list[0][n] = n;
             n++;
             if (++i == end) {
                 i = first;
@@ -113,6 +192,10 @@ static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_ca
                 }
             }
         }
+        il_sampler_2d_gather(w->smp, w->list[0], n, 1, w->u);
+        for (uint32_t j = 0; j < n; j++)
+            il_pt_begin(&w->st[j], ctx->cam.position,
+                        il_camera_sample_dir(ctx, w->px[j], w->py[j], w->u[j]));
         run_wave(pm, w, n);
         for (uint32_t j = 0; j < n; j++) {
             tile->rays += w->st[j].rays;
@@ -126,5 +209,9 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
                                il_camera_pass_result *out, il_error *err)
 {
     pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy};
+    uint64_t triangles = 0;
+    for (uint32_t i = 0; i < scene->num_meshes; i++)
+        triangles += scene->meshes[i].num_triangles;
+    pm.prefetch = triangles * sizeof(il_tri_geom) > PT_PREFETCH_BYTES;
     return il_camera_pass_tiles(scene, film, desc, render_tile, &pm, sizeof(pt_wave), out, err);
 }
