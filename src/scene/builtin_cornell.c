@@ -155,9 +155,10 @@ static il_vec3 cornell_albedo(int col)
     return il_reflectance_to_rgb(lambda, value, CORNELL_NREFL);
 }
 
-/* The walls, the light and the published camera, shared by both boxes;
- * *white is the white paint's material. */
-static il_status add_shell(il_scene *scene, uint32_t *white_out, il_error *err)
+/* The materials and the walls, shared by both boxes: *white and *light are
+ * the white paint's and the lamp's materials.  add_light adds the lamp and
+ * the camera after the box's contents (the mesh order of the original box). */
+static il_status add_shell(il_scene *scene, uint32_t *white_out, uint32_t *light_out, il_error *err)
 {
     il_status st;
     uint32_t white, green, red, light;
@@ -185,10 +186,16 @@ static il_status add_shell(il_scene *scene, uint32_t *white_out, il_error *err)
         if ((st = add_quads(scene, cornell_wall_names[i], &cornell_walls[i], 1, wall_material[i], err)) !=
             IL_OK)
             return st;
-    if ((st = add_quads(scene, "light", &cornell_light, 1, light, err)) != IL_OK)
-        return st;
     *white_out = white;
+    *light_out = light;
+    return IL_OK;
+}
 
+static il_status add_light(il_scene *scene, uint32_t light, il_error *err)
+{
+    il_status st = add_quads(scene, "light", &cornell_light, 1, light, err);
+    if (st != IL_OK)
+        return st;
     /* Published camera: at (278, 273, -800) mm looking along +z, up +y, a
      * 35 mm lens on a 25 x 25 mm film: fov = 2 atan(12.5 / 35) = 39.3076 deg. */
     il_camera_desc cam = {
@@ -202,13 +209,13 @@ static il_status add_shell(il_scene *scene, uint32_t *white_out, il_error *err)
 
 il_status il_builtin_cornell(il_scene *scene, il_error *err)
 {
-    uint32_t white;
-    il_status st = add_shell(scene, &white, err);
+    uint32_t white, light;
+    il_status st = add_shell(scene, &white, &light, err);
     if (st == IL_OK)
         st = add_quads(scene, "short_block", cornell_short_block, 5, white, err);
     if (st == IL_OK)
         st = add_quads(scene, "tall_block", cornell_tall_block, 5, white, err);
-    return st;
+    return st == IL_OK ? add_light(scene, light, err) : st;
 }
 
 /* A sphere of radius r (mm) resting on the floor at (x, z) mm. */
@@ -238,8 +245,8 @@ static il_status add_sphere(il_scene *scene, const char *name, float x, float z,
 
 il_status il_builtin_cornell_spheres(il_scene *scene, il_error *err)
 {
-    uint32_t white, mirror, glass;
-    il_status st = add_shell(scene, &white, err);
+    uint32_t white, light, mirror, glass;
+    il_status st = add_shell(scene, &white, &light, err);
     il_material_desc m = {.name = "mirror", .type = IL_MATERIAL_MIRROR};
     if (st == IL_OK)
         st = il_scene_add_material(scene, &m, &mirror, err);
@@ -252,5 +259,5 @@ il_status il_builtin_cornell_spheres(il_scene *scene, il_error *err)
         st = add_sphere(scene, "mirror_sphere", 185.0f, 370.0f, 100.0f, mirror, err);
     if (st == IL_OK)
         st = add_sphere(scene, "glass_sphere", 380.0f, 180.0f, 100.0f, glass, err);
-    return st;
+    return st == IL_OK ? add_light(scene, light, err) : st;
 }
