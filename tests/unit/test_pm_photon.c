@@ -118,14 +118,15 @@ static void test_oct(void)
     /* 127 steps per half side of the square (1/127 apart).  Near the pole
      * a step turns the direction by ~1/127 rad = 0.45 deg; near the middle
      * of an octahedron face the projection stretches it by up to ~sqrt(3)
-     * (and the folded lower half shears it), so the nearest grid point is
-     * within about 0.6 deg for 8 bits and twice that for 7.  Measured with
-     * this encoder over 200k directions: 0.632 and 1.278 deg (mean 0.31). */
+     * (and the folded lower half shears it); rounding each coordinate (not
+     * searching for the nearest grid point) adds up to half a diagonal step.
+     * Measured with this encoder over 200k directions: 0.938 and 1.908 deg
+     * (mean 0.34). */
     printf("octahedral: worst 8-bit %.3f deg (mean %.3f), worst 7-bit %.3f deg\n", DEG(worst8),
            DEG(mean8), DEG(worst7));
-    CHECK(DEG(worst8) < 0.7);
-    CHECK(DEG(worst7) < 1.4);
-    CHECK(DEG(mean8) < 0.35);
+    CHECK(DEG(worst8) < 1.0);
+    CHECK(DEG(worst7) < 2.0);
+    CHECK(DEG(mean8) < 0.36);
     CHECK(DEG(worst8) < DEG(worst7));
     /* The axes (every Cornell-box wall normal) are exact. */
     const il_vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -161,8 +162,8 @@ static void test_photon(void)
               memcmp(&q.z, &p.z, sizeof(float)) == 0);
         CHECK((ph.normal >> 14) == 0);
         il_vec3 n0 = il_photon_normal(&ph);
-        CHECK(DEG(angle_between(n0, nrm)) < 1.4);
-        CHECK(DEG(angle_between(il_photon_dir(&ph), dir)) < 0.7);
+        CHECK(DEG(angle_between(n0, nrm)) < 2.0);
+        CHECK(DEG(angle_between(il_photon_dir(&ph), dir)) < 1.0);
         il_vec3 pw = il_photon_power(&ph);
         CHECK_NEAR(pw.x, power.x, v3_max_comp(power) * 0x1p-8);
         /* The kd-tree's axis bits do not disturb the normal. */

@@ -75,9 +75,7 @@ il_vec3 il_rgbe_unpack(uint32_t rgbe)
  * and 3.3): project onto the octahedron |x|+|y|+|z| = 1, fold the lower
  * half over the diagonals onto the square, store each coordinate as a snorm
  * with 2^(bits-1)-1 steps per side (so 0 and +-1, hence the axes, are
- * exact).  Encoding rounds to nearest and then, as the paper's "precise"
- * variant, keeps whichever of the four surrounding grid points decodes
- * nearest to the input. */
+ * exact).  Encoding rounds each coordinate to nearest. */
 
 static float sign_not_zero(float x) { return x >= 0.0f ? 1.0f : -1.0f; }
 
@@ -108,24 +106,11 @@ uint16_t il_oct_pack(il_vec3 n, unsigned bits)
         py = (1.0f - fabsf(n.x)) * sign_not_zero(n.y);
     }
     float fx = il_clampf(px, -1.0f, 1.0f) * (float)M, fy = il_clampf(py, -1.0f, 1.0f) * (float)M;
+    /* Plain rounding: Cigolle et al.'s "precise" search of the four
+     * neighbours would shave the worst error from about 0.9 to 0.63 degrees
+     * (8 bits) at five decodes per photon, a fifth of the tracing time;
+     * the estimates need neither (the normal test allows 26 degrees). */
     int bx = (int)lrintf(fx), by = (int)lrintf(fy);
-    /* "Precise" refinement: the nearest of the four surrounding points. */
-    il_vec3 nu = v3_normalize(n);
-    int x0 = (int)floorf(fx), y0 = (int)floorf(fy);
-    float best = v3_dot(oct_decode((float)bx / (float)M, (float)by / (float)M), nu);
-    for (int j = 0; j < 2; j++) {
-        for (int i = 0; i < 2; i++) {
-            int cx = x0 + i, cy = y0 + j;
-            if (cx > M || cy > M)
-                continue;
-            float d = v3_dot(oct_decode((float)cx / (float)M, (float)cy / (float)M), nu);
-            if (d > best) {
-                best = d;
-                bx = cx;
-                by = cy;
-            }
-        }
-    }
     return (uint16_t)((unsigned)(bx + M) | (unsigned)(by + M) << bits);
 }
 
