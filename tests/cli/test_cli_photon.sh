@@ -5,7 +5,7 @@
 
 expect_exit 0 "render --method photon --help" -- "$ILLUM" render --method photon --help
 for o in --photons --lookup --radius --photon-depth --k --photon-filter --final-gather --alpha \
-         --initial-radius; do
+         --initial-radius --precomputed-irradiance; do
     expect_stdout -- "$o" "photon help lists $o"
 done
 expect_exit 0 "info cornell-spheres" -- "$ILLUM" info cornell-spheres
@@ -27,6 +27,11 @@ grep -q '"stored_caustic":[[:space:]]*0,' pm.json && fail "cornell-spheres: no c
 expect_exit 0 "render photon, grid" -- "$ILLUM" render cornell-spheres --method photon --photons 20000 \
     --lookup grid --radius 0.03 --photon-filter epanechnikov --width 24 --height 24 --spp 1 -q -o grid.pfm
 expect_file grid.pfm "render photon, grid"
+expect_exit 0 "render photon, full estimates" -- "$ILLUM" render cornell --method photon --photons 20000 \
+    --precomputed-irradiance off --width 16 --height 16 --spp 1 -q -o full.pfm
+expect_file full.pfm "render photon, full estimates"
+expect_exit 1 "--precomputed-irradiance maybe" -- "$ILLUM" render cornell --method photon \
+    --precomputed-irradiance maybe -q -o bad.exr
 expect_exit 0 "render sppm" -- "$ILLUM" render cornell --method sppm --photons 10000 --alpha 0.6 \
     --initial-radius 0.02 --width 24 --height 24 --spp 3 -o sppm.exr --stats sppm.json
 expect_file sppm.exr "render sppm"

@@ -82,6 +82,7 @@ typedef struct il_pm_map {
      * scaled by power_scale), normal the photon's, dir unused. */
     il_photon *irr;
     size_t irr_count;
+    float lo[3], hi[3];        /* the photons' bounding box (empty map: lo > hi) */
 } il_pm_map;
 
 /* Takes the photons (malloc'd, count of them; the map owns them from now on,

@@ -39,6 +39,16 @@ static il_status gather(const il_pm_map *map, const il_pm_lookup *q, il_vec3 p,
     if (!map || map->count == 0 || !(q->radius > 0.0f))
         return IL_OK;
     float max_d2 = q->radius * q->radius;
+    /* Far from every photon of the map (a caustic map lit in one corner):
+     * nothing to search for. */
+    const float pq[3] = {p.x, p.y, p.z};
+    float out_d2 = 0.0f;
+    for (int c = 0; c < 3; c++) {
+        float e = il_maxf(map->lo[c] - pq[c], pq[c] - map->hi[c]);
+        out_d2 += e > 0.0f ? e * e : 0.0f;
+    }
+    if (out_d2 > max_d2)
+        return IL_OK;
     if (q->lookup == IL_PHOTON_KDTREE && q->k > 0) {
         if (scratch->knn_cap < q->k) {
             il_pm_neighbour *items = realloc(scratch->knn, (size_t)q->k * sizeof *items);
@@ -90,7 +100,7 @@ static inline float filter_weight(const pm_filter *f, float d2)
  * only photons that landed on a surface facing the same way. */
 static inline bool normal_agrees(const il_photon *ph, il_vec3 n)
 {
-    return v3_dot(il_photon_normal(ph), n) >= IL_PM_NORMAL_COS;
+    return il_pm_normal_agrees(ph, n);
 }
 
 /* The grazing limit of scene/bsdf.c (IL_BSDF_EPS there). */

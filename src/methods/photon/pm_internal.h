@@ -6,6 +6,7 @@
 #ifndef IL_METHODS_PM_INTERNAL_H
 #define IL_METHODS_PM_INTERNAL_H
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "core/error.h"
@@ -19,6 +20,25 @@ static inline unsigned il_pm_axis(const il_photon *ph) { return ph->normal >> IL
 static inline void il_pm_set_axis(il_photon *ph, unsigned axis)
 {
     ph->normal = (uint16_t)((ph->normal & IL_PM_NORMAL_MASK) | (axis << IL_PM_AXIS_SHIFT));
+}
+
+/* The normal test of the estimates, v3_dot(il_photon_normal(ph), n) >=
+ * IL_PM_NORMAL_COS for a unit n, without normalising the decoded normal:
+ * the 7+7-bit octahedral decode of pm_photon.c (Cigolle et al. 2014, 3.1)
+ * gives v, and dot(v, n) >= c |v| is tested squared. */
+static inline bool il_pm_normal_agrees(const il_photon *ph, il_vec3 n)
+{
+    const float inv = 1.0f / 63.0f;
+    float x = (float)((int)(ph->normal & 127u) - 63) * inv;
+    float y = (float)((int)((ph->normal >> 7) & 127u) - 63) * inv;
+    float z = 1.0f - fabsf(x) - fabsf(y);
+    if (z < 0.0f) {
+        float ox = x;
+        x = (1.0f - fabsf(y)) * (ox >= 0.0f ? 1.0f : -1.0f);
+        y = (1.0f - fabsf(ox)) * (y >= 0.0f ? 1.0f : -1.0f);
+    }
+    float d = x * n.x + y * n.y + z * n.z;
+    return d >= 0.0f && d * d >= IL_PM_NORMAL_COS * IL_PM_NORMAL_COS * (x * x + y * y + z * z);
 }
 
 /* Squared distance from q to the photon.  Every structure uses this one

@@ -214,97 +214,19 @@ typedef struct kd_pending {
         }                                                                                    \
     } while (0)
 
-/* Rearranges a[0..n-1] so that a[k] has rank k by d2, nearer ones before
- * it (Hoare's FIND, median-of-three pivot, three-way partition). */
-static void select_nearest(il_pm_neighbour *a, uint32_t n, uint32_t k)
-{
-    uint32_t lo = 0, hi = n;
-    while (hi - lo > 1) {
-        float x = a[lo].d2, y = a[lo + (hi - lo) / 2].d2, z = a[hi - 1].d2;
-        float v = x < y ? (y < z ? y : (x < z ? z : x)) : (x < z ? x : (y < z ? z : y));
-        uint32_t lt = lo, i = lo, gt = hi;
-        while (i < gt) {
-            il_pm_neighbour t = a[i];
-            if (t.d2 < v) {
-                a[i++] = a[lt];
-                a[lt++] = t;
-            } else if (t.d2 > v) {
-                a[i] = a[--gt];
-                a[gt] = t;
-            } else {
-                i++;
-            }
-        }
-        if (k < lt)
-            hi = lt;
-        else if (k >= gt)
-            lo = gt;
-        else
-            return;
-    }
-}
-
-/* Candidates for k nearest without a heap: they are appended to a buffer
- * of 2k; when it fills, a selection keeps the k nearest and the k-th's
- * distance becomes the bound (once k are held, only strictly nearer ones
- * are taken, as with the heap of pm_internal.h).  Amortised O(1) per
- * candidate instead of a sift through log2(k) levels of a heap. */
-#define KNN_BUF_MAX 2
-
 uint32_t il_pm_kd_knn(const il_photon *photons, size_t n, il_vec3 p, uint32_t k, float max_d2,
                       il_pm_neighbour *out, float *r2)
 {
-    if (n == 0 || k == 0) {
-        if (r2)
-            *r2 = max_d2;
-        return 0;
-    }
-    const float q[3] = {p.x, p.y, p.z};
-    if (k > KNN_BUF_MAX / 2) {
-        il_pm_knn_heap h = {out, k, 0, max_d2};
+    il_pm_knn_heap h = {out, k, 0, max_d2};
+    if (n > 0 && k > 0) {
+        const float q[3] = {p.x, p.y, p.z};
 #define KNN_VISIT(i, d2) il_pm_heap_offer(&h, (i), (d2))
         KD_TRAVERSE(photons, n, q, h.bound, KNN_VISIT);
 #undef KNN_VISIT
-        if (r2)
-            *r2 = h.count == k ? h.items[0].d2 : max_d2;
-        return h.count;
     }
-    il_pm_neighbour buf[KNN_BUF_MAX];
-    const uint32_t cap = 2 * k;
-    uint32_t count = 0;
-    bool held = false;                 /* k held: bound is the k-th distance */
-    float bound = max_d2;
-#define BUF_VISIT(i, dd)                                                                     \
-    if (!held || (dd) < bound) {                                                             \
-        buf[count++] = (il_pm_neighbour){(i), (dd)};                                         \
-        if (count == k && !held) {                                                           \
-            float m_ = buf[0].d2;                                                            \
-            for (uint32_t j_ = 1; j_ < k; j_++)                                              \
-                m_ = buf[j_].d2 > m_ ? buf[j_].d2 : m_;                                      \
-            bound = m_;                                                                      \
-            held = true;                                                                     \
-        } else if (count == cap) {                                                           \
-            select_nearest(buf, cap, k - 1);                                                 \
-            bound = buf[k - 1].d2;                                                           \
-            count = k;                                                                       \
-        }                                                                                    \
-    }
-    KD_TRAVERSE(photons, n, q, bound, BUF_VISIT);
-#undef BUF_VISIT
-    if (count > k) {
-        select_nearest(buf, count, k - 1);
-        count = k;
-    }
-    float far = max_d2;
-    if (count == k) {
-        far = buf[0].d2;
-        for (uint32_t j = 1; j < k; j++)
-            far = buf[j].d2 > far ? buf[j].d2 : far;
-    }
-    memcpy(out, buf, count * sizeof *out);
     if (r2)
-        *r2 = far;
-    return count;
+        *r2 = (k > 0 && h.count == k) ? h.items[0].d2 : max_d2;
+    return h.count;
 }
 
 bool il_pm_kd_range(const il_photon *photons, size_t n, il_vec3 p, float d2, il_pm_buffer *out)
@@ -333,7 +255,7 @@ uint32_t il_pm_kd_nearest_normal(const il_photon *photons, size_t n, il_vec3 p, 
  * estimates); each one found shrinks the search to its distance. */
 #define NEAREST_VISIT(i, dd)                                                                 \
     if ((best == UINT32_MAX || (dd) < bound) &&                                              \
-        v3_dot(il_photon_normal(&photons[(i)]), nrm) >= IL_PM_NORMAL_COS) {                  \
+        il_pm_normal_agrees(&photons[(i)], nrm)) {                                           \
         best = (i);                                                                          \
         bound = (dd);                                                                        \
     }

@@ -14,6 +14,10 @@ il_status il_pm_map_build(il_pm_map *map, il_photon *photons, size_t count, floa
     map->count = photons ? count : 0;
     map->power_scale = power_scale;
     map->lookup = lookup;
+    for (int c = 0; c < 3; c++) {
+        map->lo[c] = INFINITY;
+        map->hi[c] = -INFINITY;
+    }
     il_status st = IL_OK;
     if (map->count > UINT32_MAX) {
         st = il_fail(err, IL_ERR_INVALID, "photon map: %zu photons, at most %u fit one map",
@@ -30,6 +34,10 @@ il_status il_pm_map_build(il_pm_map *map, il_photon *photons, size_t count, floa
             if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
                 st = il_fail(err, IL_ERR_INVALID, "photon map: photon %zu has a non-finite position", i);
                 break;
+            }
+            for (int c = 0; c < 3; c++) {
+                map->lo[c] = p[c] < map->lo[c] ? p[c] : map->lo[c];
+                map->hi[c] = p[c] > map->hi[c] ? p[c] : map->hi[c];
             }
         }
     }
