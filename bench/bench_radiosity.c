@@ -10,100 +10,64 @@
  * included), the render, and the peak resident memory of the process.  One
  * configuration per run, so the peak belongs to it (bench/radiosity.sh runs
  * the matrix).  It prints figures and never judges them. */
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 #include <sys/resource.h>
 
-#include "illum/illum.h"
+#include "bench_common.h"
 
-static void usage(void)
+static bool radiosity_option(const char *a, const char *v, void *user)
 {
-    fprintf(stderr, "usage: bench_radiosity SCENE [--subdiv L | --patch-size M] "
-                    "[--form-factors hemicube|raycast] [--hemicube-res N] [--ff-samples N] "
-                    "[--solver shooting|jacobi|gauss-seidel] [--tolerance X] [--ff-cache-mb N] [--threads T] "
-                    "[--width W] [--height H] [--spp N]\n");
+    il_radiosity_desc *rad = user;
+    if (!strcmp(a, "--subdiv"))
+        rad->subdivisions = (uint32_t)atoi(v);
+    else if (!strcmp(a, "--patch-size"))
+        rad->patch_size = (float)atof(v);
+    else if (!strcmp(a, "--form-factors"))
+        rad->form_factors = !strcmp(v, "raycast") ? IL_FF_RAYCAST : IL_FF_HEMICUBE;
+    else if (!strcmp(a, "--hemicube-res"))
+        rad->hemicube_resolution = (uint32_t)atoi(v);
+    else if (!strcmp(a, "--ff-samples"))
+        rad->ray_samples = (uint32_t)atoi(v);
+    else if (!strcmp(a, "--solver"))
+        rad->solver = !strcmp(v, "jacobi")         ? IL_SOLVER_JACOBI
+                      : !strcmp(v, "gauss-seidel") ? IL_SOLVER_GAUSS_SEIDEL
+                                                   : IL_SOLVER_SHOOTING;
+    else if (!strcmp(a, "--tolerance"))
+        rad->tolerance = (float)atof(v);
+    else if (!strcmp(a, "--ff-cache-mb"))
+        rad->ff_cache_mb = (uint32_t)atoi(v);
+    else
+        return false;
+    return true;
 }
 
 int main(int argc, char **argv)
 {
-    const char *scene_name = NULL;
     il_radiosity_desc rad = {0};
-    il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .spp = 4, .radiosity = &rad};
-    uint32_t w = 256, h = 256;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (a[0] != '-') {
-            scene_name = a;
-            continue;
-        }
-        if (!v) {
-            usage();
-            return 2;
-        }
-        i++;
-        if (!strcmp(a, "--subdiv"))
-            rad.subdivisions = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--patch-size"))
-            rad.patch_size = (float)atof(v);
-        else if (!strcmp(a, "--form-factors"))
-            rad.form_factors = !strcmp(v, "raycast") ? IL_FF_RAYCAST : IL_FF_HEMICUBE;
-        else if (!strcmp(a, "--hemicube-res"))
-            rad.hemicube_resolution = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--ff-samples"))
-            rad.ray_samples = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--solver"))
-            rad.solver = !strcmp(v, "jacobi")         ? IL_SOLVER_JACOBI
-                         : !strcmp(v, "gauss-seidel") ? IL_SOLVER_GAUSS_SEIDEL
-                                                      : IL_SOLVER_SHOOTING;
-        else if (!strcmp(a, "--tolerance"))
-            rad.tolerance = (float)atof(v);
-        else if (!strcmp(a, "--ff-cache-mb"))
-            rad.ff_cache_mb = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--threads"))
-            rd.threads = atoi(v);
-        else if (!strcmp(a, "--width"))
-            w = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--height"))
-            h = (uint32_t)atoi(v);
-        else if (!strcmp(a, "--spp"))
-            rd.spp = (uint32_t)atoi(v);
-        else {
-            usage();
-            return 2;
-        }
-    }
-    if (!scene_name) {
-        usage();
+    bench_run b = {.prog = "bench_radiosity",
+                   .usage = "bench_radiosity SCENE [--subdiv L | --patch-size M] "
+                            "[--form-factors hemicube|raycast] [--hemicube-res N] [--ff-samples N] "
+                            "[--solver shooting|jacobi|gauss-seidel] [--tolerance X] "
+                            "[--ff-cache-mb N] [--threads T] [--width W] [--height H] [--spp N]",
+                   .width = 256,
+                   .height = 256,
+                   .rd = {.method = IL_METHOD_RADIOSITY, .spp = 4, .radiosity = &rad}};
+    if (!bench_parse(argc, argv, &b, radiosity_option, &rad))
         return 2;
-    }
-
-    il_error err = {0};
-    il_scene *scene = NULL;
-    il_film *film = NULL;
-    if (il_scene_load(scene_name, NULL, &scene, &err) != IL_OK ||
-        il_scene_commit(scene, &err) != IL_OK || il_film_create(w, h, &film, &err) != IL_OK) {
-        fprintf(stderr, "bench_radiosity: %s\n", err.message);
-        il_scene_release(scene);
-        return 1;
-    }
-    il_render_stats st;
-    if (il_render(scene, film, &rd, &st, &err) != IL_OK) {
-        fprintf(stderr, "bench_radiosity: %s\n", err.message);
+    if (!bench_render(&b)) {
+        bench_release(&b);
         return 1;
     }
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
-    const il_radiosity_stats *r = &st.radiosity;
+    const il_radiosity_stats *r = &b.stats.radiosity;
     printf("%-12s %-8s %7s %8s %6s %7s %8s %8s %8s %8s %8s %9s %9s\n", "scene", "ff", "threads",
            "patches", "steps", "unshot", "mesh_s", "ff_s", "solve_s", "render_s", "total_s",
            "cache_MB", "peak_MB");
-    printf("%-12s %-8s %7d %8u %6u %7.4f %8.3f %8.3f %8.3f %8.3f %8.3f %9.1f %9.1f\n", scene_name,
-           rad.form_factors == IL_FF_RAYCAST ? "raycast" : "hemicube", rd.threads, r->num_patches,
+    printf("%-12s %-8s %7d %8u %6u %7.4f %8.3f %8.3f %8.3f %8.3f %8.3f %9.1f %9.1f\n", b.scene_name,
+           rad.form_factors == IL_FF_RAYCAST ? "raycast" : "hemicube", b.rd.threads, r->num_patches,
            r->steps, r->unshot_fraction, r->seconds_mesh, r->seconds_form_factors, r->seconds_solve,
            r->seconds_render, r->seconds_mesh + r->seconds_solve,
            (double)r->cache_bytes / (1 << 20), (double)ru.ru_maxrss / 1024.0);
-    il_film_release(film);
-    il_scene_release(scene);
+    bench_release(&b);
     return 0;
 }

@@ -8,18 +8,24 @@
 
 #include "core/error.h"
 
-#define IL_TMP_SUFFIX ".tmp-XXXXXX" /* mkstemp's template, not a placeholder */
+/* The temporary name is the output's path, ".tmp-" and the six characters
+ * that mkstemp(3) requires to be 'X' and replaces with a unique suffix. */
+#define IL_TMP_PREFIX ".tmp-"
+#define IL_MKSTEMP_CHARS 6
 
 il_status il_atomic_open(il_atomic_file *af, const char *path, il_error *err)
 {
     af->f = NULL;
     af->path = path;
     size_t len = strlen(path);
-    af->tmp = il_malloc(len + sizeof IL_TMP_SUFFIX, err);
+    const size_t prefix = sizeof IL_TMP_PREFIX - 1;
+    af->tmp = il_malloc(len + prefix + IL_MKSTEMP_CHARS + 1, err);
     if (!af->tmp)
         return IL_ERR_MEMORY;
     memcpy(af->tmp, path, len);
-    memcpy(af->tmp + len, IL_TMP_SUFFIX, sizeof IL_TMP_SUFFIX);
+    memcpy(af->tmp + len, IL_TMP_PREFIX, prefix);
+    memset(af->tmp + len + prefix, 'X', IL_MKSTEMP_CHARS);
+    af->tmp[len + prefix + IL_MKSTEMP_CHARS] = '\0';
     int fd = mkstemp(af->tmp);
     if (fd < 0) {
         il_status st = il_fail(err, IL_ERR_IO, "%s: cannot create file: %s", path, strerror(errno));

@@ -2,27 +2,9 @@
  * densities, spot falloff, emission sidedness, the no-light error. */
 #include <string.h>
 
-#include "check.h"
+#include "scene_build.h"
 #include "scene/lights.h"
 #include "scene/scene.h"
-
-#define PI_D 3.14159265358979323846
-
-/* A quad centre c, half-extents ex, ey; its front (normal) is cross(ex, ey). */
-static void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
-{
-    float p[12];
-    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int i = 0; i < 4; i++) {
-        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
-        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
-        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
-    }
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx, .material = mat};
-    il_error err = {0};
-    CHECK_OK(il_scene_add_mesh(s, &m, &err), &err);
-}
 
 static double lum(il_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 

@@ -3,49 +3,16 @@
  * tracer receives from it (lights.c), and lights are chosen by power. */
 #include <string.h>
 
-#include "check.h"
+#include "scene_build.h"
 #include "core/rng.h"
 #include "methods/photon/pm_emit.h"
 #include "scene/lights.h"
 #include "trace/trace.h"
 
-#define PI_D 3.14159265358979323846
 #define N_PHOTONS 200000
 
-static il_error g_err;
-
-static il_scene *new_scene(void)
-{
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_create(&s, &g_err), &g_err);
-    return s;
-}
-
-static uint32_t add_material(il_scene *s, il_material_desc d)
-{
-    uint32_t idx = 0;
-    CHECK_OK(il_scene_add_material(s, &d, &idx, &g_err), &g_err);
-    return idx;
-}
-
-/* A quad: centre c, half-extents ex and ey; its front face is cross(ex, ey). */
-static void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
-{
-    float p[12];
-    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int i = 0; i < 4; i++) {
-        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
-        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
-        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
-    }
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx,
-                      .material = mat};
-    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
-}
-
 /* A floor 10 x 10 at y = -1, facing up: geometry for the scene's bounds. */
-static void add_floor(il_scene *s)
+static void add_ground(il_scene *s)
 {
     add_quad(s, v3(0, -1, 0), v3(0, 0, 5), v3(5, 0, 0), 0);
 }
@@ -53,11 +20,6 @@ static void add_floor(il_scene *s)
 static void add_light(il_scene *s, il_light_desc d)
 {
     CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
-}
-
-static void commit(il_scene *s)
-{
-    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
 }
 
 static bool emit(const il_scene *s, il_pcg32 *rng, il_pm_emission *e)
@@ -120,7 +82,7 @@ static stats run(const il_scene *s, il_vec3 axis, float min_cos, il_vec3 centre,
 static void test_point(void)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0),
                                  .intensity = v3(1, 2, 3)});
     commit(s);
@@ -142,7 +104,7 @@ static void test_point(void)
 static void test_spot(float angle, float n, float expect_cutoff_cos)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     il_vec3 axis = v3_normalize(v3(0.3f, -1.0f, 0.2f));
     add_light(s, (il_light_desc){.type = IL_LIGHT_SPOT, .position = v3(0, 2, 0), .direction = axis,
                                  .intensity = v3(2, 1, 0.5f), .spot_angle = angle,
@@ -199,7 +161,7 @@ static void test_spot(float angle, float n, float expect_cutoff_cos)
 static void test_area(bool two_sided)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     il_vec3 le = v3(1.0f, 0.5f, 0.25f);
     uint32_t m = add_material(s, (il_material_desc){.emission = le, .two_sided = two_sided});
     /* 2 x 1 at y = 1, facing down: cross(ex, ey) = cross(x, z) = -y. */
@@ -241,7 +203,7 @@ static void test_area(bool two_sided)
 static void test_directional(void)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     il_vec3 dir = v3_normalize(v3(1, -2, 0.5f));
     add_light(s, (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = dir,
                                  .intensity = v3(1, 2, 0.5f)});
@@ -272,7 +234,7 @@ static void test_directional(void)
 static void test_environment(void)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     il_environment_desc env = {.radiance = v3(0.5f, 1, 2)};
     CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
     commit(s);
@@ -294,7 +256,7 @@ static void test_environment(void)
 static void test_split(void)
 {
     il_scene *s = new_scene();
-    add_floor(s);
+    add_ground(s);
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(-1, 1, 0), .intensity = v3s(1)});
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(1, 1, 0), .intensity = v3s(3)});
     /* An area light of power pi * 4 * 2 = 8 pi (8 : 4 pi : 12 pi). */

@@ -3,6 +3,7 @@
 #ifndef IL_TESTS_HR_SCENES_H
 #define IL_TESTS_HR_SCENES_H
 
+#include "mesh_compare.h"
 #include "rad_scenes.h"
 #include "methods/hr/hr.h"
 #include "scene/camera.h"
@@ -52,63 +53,6 @@ static inline void hr_print_stats(const char *what, const il_hr_stats *h)
            (unsigned long long)h->links, h->iterations, (unsigned long long)h->visibility_rays,
            h->seconds_setup, h->seconds_refine, h->seconds_gather, h->seconds_average,
            (double)h->peak_bytes / 1e6);
-}
-
-/* Renders the scene with rd into a new w x h image. */
-static inline il_image hr_render_image(const il_scene *s, uint32_t w, uint32_t h,
-                                       const il_render_desc *rd, il_render_stats *stats)
-{
-    il_film *film = NULL;
-    il_image img = {0};
-    CHECK_OK(il_film_create(w, h, &film, &g_err), &g_err);
-    if (!film)
-        return img;
-    CHECK_OK(il_render(s, film, rd, stats, &g_err), &g_err);
-    CHECK_OK(il_film_resolve(film, &img, &g_err), &g_err);
-    il_film_release(film);
-    return img;
-}
-
-/* Compares the mean radiance over the pixels of each scene mesh (the mesh
- * the camera ray through the pixel centre hits first, the same mask for
- * both images) of image a against reference b: luminance within tol,
- * each channel within 2 tol.  Emitters and meshes under 40 pixels are
- * skipped.  Returns how many meshes were compared. */
-static inline uint32_t hr_compare_meshes(const il_scene *s, const il_image *a, const il_image *b,
-                                         uint32_t w, uint32_t h, double tol, const char *label)
-{
-    enum { MAXM = 32 };
-    il_camera cam;
-    il_camera_init(&cam, &s->camera.desc, w, h);
-    double sa[MAXM][3] = {{0}}, sb[MAXM][3] = {{0}};
-    uint32_t count[MAXM] = {0};
-    for (uint32_t y = 0; a->rgb && b->rgb && y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
-            il_ray ray = {.org = cam.position, .tmin = 0.0f,
-                          .dir = il_camera_ray_dir(&cam, x + 0.5f, y + 0.5f), .tmax = INFINITY};
-            il_hit hit;
-            if (!il_trace_closest(s->tracer, &ray, &hit) || hit.mesh >= MAXM)
-                continue;
-            count[hit.mesh]++;
-            for (int c = 0; c < 3; c++) {
-                sa[hit.mesh][c] += a->rgb[3 * (y * w + x) + c];
-                sb[hit.mesh][c] += b->rgb[3 * (y * w + x) + c];
-            }
-        }
-    uint32_t compared = 0;
-    for (uint32_t m = 0; m < s->num_meshes && m < MAXM; m++) {
-        if (count[m] < 40 || !v3_is_zero(s->materials[s->meshes[m].material].emission))
-            continue;
-        compared++;
-        double la = 0.2126 * sa[m][0] + 0.7152 * sa[m][1] + 0.0722 * sa[m][2];
-        double lb = 0.2126 * sb[m][0] + 0.7152 * sb[m][1] + 0.0722 * sb[m][2];
-        printf("%-18s %5u px  hr %.4f  %s %.4f  (%+.2f%%)\n", s->meshes[m].name[0] ? s->meshes[m].name : "mesh",
-               count[m], la / count[m], label, lb / count[m], 100.0 * (la - lb) / lb);
-        CHECK_REL(la, lb, tol);
-        for (int c = 0; c < 3; c++)
-            CHECK_REL(sa[m][c], sb[m][c], 2.0 * tol);
-    }
-    return compared;
 }
 
 /* An axis-aligned box [lo, hi] of 6 outward-facing quads (a blocker). */

@@ -1,58 +1,11 @@
-/* Helpers for the path tracer's validation tests: scenes built through the
- * public API, rendering through the internal strategy switch, image means. */
+/* Helpers for the path tracer's validation tests: rendering through the
+ * internal strategy switch, image means (scenes: tests/scene_build.h). */
 #ifndef IL_TESTS_PT_SCENES_H
 #define IL_TESTS_PT_SCENES_H
 
-#include <string.h>
-
-#include "check.h"
+#include "scene_build.h"
 #include "methods/pt/pt.h"
 #include "scene/camera.h"
-
-#define PI_D 3.14159265358979323846
-
-static il_error g_err;
-
-static inline uint32_t add_material(il_scene *s, il_material_desc d)
-{
-    uint32_t idx = 0;
-    CHECK_OK(il_scene_add_material(s, &d, &idx, &g_err), &g_err);
-    return idx;
-}
-
-/* A quad: centre c, half-extents ex and ey; its front face (normal) is cross(ex, ey). */
-static inline void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
-{
-    float p[12];
-    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int i = 0; i < 4; i++) {
-        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
-        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
-        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
-    }
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx, .material = mat};
-    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
-}
-
-/* A horizontal square of half-size h at height y, facing up. */
-static inline void add_floor(il_scene *s, float y, float h, uint32_t mat)
-{
-    add_quad(s, v3(0, y, 0), v3(0, 0, h), v3(h, 0, 0), mat);
-}
-
-static inline il_scene *new_scene(void)
-{
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_create(&s, &g_err), &g_err);
-    return s;
-}
-
-static inline void set_camera(il_scene *s, il_vec3 pos, il_vec3 target, il_vec3 up, float fov)
-{
-    il_camera_desc c = {.position = pos, .target = target, .up = up, .fov_y = fov};
-    CHECK_OK(il_scene_set_camera(s, &c, &g_err), &g_err);
-}
 
 /* Renders with the given strategy into a new image (rgb NULL on failure). */
 static inline il_image render_image(const il_scene *s, uint32_t w, uint32_t h, const il_render_desc *rd,

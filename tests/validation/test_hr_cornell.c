@@ -10,10 +10,8 @@
 
 int main(void)
 {
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &g_err), &g_err);
-    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
-    if (!s || !s->committed)
+    il_scene *s = load_committed("cornell");
+    if (!s)
         return check_report();
 
     il_render_desc pt = {.method = IL_METHOD_PT, .spp = 512, .max_depth = 64, .threads = 2, .seed = 3};
@@ -22,10 +20,10 @@ int main(void)
     il_hr_desc hd = {.bf_eps = 0.005f, .energy_eps = 1e-4f};
     il_render_desc rd = {.method = IL_METHOD_HR, .spp = 16, .threads = 2, .seed = 3, .hr = &hd};
     il_render_stats st;
-    il_image img = hr_render_image(s, W, H, &rd, &st);
+    il_image img = render_desc_image(s, W, H, &rd, &st);
     hr_print_stats("hr", &st.hr);
     CHECK(st.hr.patches > 10 && st.hr.elements > st.hr.patches && st.spp == 16);
-    CHECK(hr_compare_meshes(s, &img, &ref, W, H, 0.03, "pt") >= 6);
+    CHECK(compare_mesh_means(s, &img, &ref, 0.03, 0.06, "hr", "pt") >= 6);
     il_image_free(&img);
     il_image_free(&ref);
     il_scene_release(s);

@@ -3,80 +3,10 @@
  * photons where nothing is lit. */
 #include <string.h>
 
-#include "check.h"
+#include "scene_build.h"
 #include "methods/photon/pm.h"
 #include "scene/scene.h"
 
-#define PI_D 3.14159265358979323846
-
-static il_error g_err;
-
-static il_scene *new_scene(void)
-{
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_create(&s, &g_err), &g_err);
-    return s;
-}
-
-static uint32_t add_material(il_scene *s, il_material_desc d)
-{
-    uint32_t idx = 0;
-    CHECK_OK(il_scene_add_material(s, &d, &idx, &g_err), &g_err);
-    return idx;
-}
-
-/* A quad: centre c, half-extents ex and ey; its front face is cross(ex, ey). */
-static void add_quad(il_scene *s, il_vec3 c, il_vec3 ex, il_vec3 ey, uint32_t mat)
-{
-    float p[12];
-    const float sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int i = 0; i < 4; i++) {
-        p[3 * i + 0] = c.x + sx[i] * ex.x + sy[i] * ey.x;
-        p[3 * i + 1] = c.y + sx[i] * ex.y + sy[i] * ey.y;
-        p[3 * i + 2] = c.z + sx[i] * ex.z + sy[i] * ey.z;
-    }
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    il_mesh_desc m = {.num_vertices = 4, .num_triangles = 2, .positions = p, .indices = idx,
-                      .material = mat};
-    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
-}
-
-/* A UV sphere with smooth vertex normals. */
-static void add_sphere(il_scene *s, il_vec3 c, float r, uint32_t mat)
-{
-    enum { NU = 96, NV = 48 };
-    static float p[3 * (NU + 1) * (NV + 1)], n[3 * (NU + 1) * (NV + 1)];
-    static uint32_t idx[6 * NU * NV];
-    uint32_t nv = 0, nt = 0;
-    for (int j = 0; j <= NV; j++) {
-        double th = PI_D * j / NV;
-        for (int i = 0; i <= NU; i++) {
-            double ph = 2 * PI_D * i / NU;
-            double d[3] = {sin(th) * cos(ph), cos(th), sin(th) * sin(ph)};
-            for (int k = 0; k < 3; k++) {
-                n[3 * nv + k] = (float)d[k];
-                p[3 * nv + k] = (float)(v3_get(c, k) + r * d[k]);
-            }
-            nv++;
-        }
-    }
-    for (int j = 0; j < NV; j++)
-        for (int i = 0; i < NU; i++) {
-            uint32_t a = j * (NU + 1) + i, b = a + 1, cc = a + NU + 1, d = cc + 1;
-            /* Counter-clockwise seen from outside. */
-            uint32_t t[6] = {a, b, cc, b, d, cc};
-            memcpy(idx + 3 * nt, t, sizeof t);
-            nt += 2;
-        }
-    il_mesh_desc m = {.num_vertices = nv, .num_triangles = nt, .positions = p, .normals = n,
-                      .indices = idx, .material = mat};
-    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
-}
-
-static void commit(il_scene *s)
-{
-    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
-}
 
 /* ------------------------------------------------------- deposit records */
 
@@ -298,7 +228,7 @@ static void test_glass(void)
     uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0)});
     uint32_t glass = add_material(s, (il_material_desc){.type = IL_MATERIAL_DIELECTRIC, .ior = 1.5f});
     add_quad(s, v3(0, 0.5f, 0), v3(0, 0, 20), v3(20, 0, 0), black);
-    add_sphere(s, v3(0, 2, 0), 1.0f, glass);
+    add_ball(s, v3(0, 2, 0), 1.0f, glass);
     double half = atan(0.5 / 8.0) * 180 / PI_D;   /* a beam of radius 0.5 at the ball */
     il_light_desc l = {.type = IL_LIGHT_SPOT, .position = v3(0, 10, 0), .direction = v3(0, -1, 0),
                        .intensity = v3s(1), .spot_angle = (float)half};

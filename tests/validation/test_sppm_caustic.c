@@ -4,7 +4,7 @@
  * the camera sees directly, not through the ball) is within 5% of a long
  * path-traced reference (the issue's criterion), and the caustic is there:
  * the region is several times brighter than the lamp's direct light. */
-#include "pm_scenes.h"
+#include "mesh_compare.h"
 #include "scene/loader.h"
 
 #define W 64
@@ -60,16 +60,16 @@ int main(void)
     il_scene *s = caustic_scene();
     if (!s || !s->committed)
         return check_report();
-    uint32_t *mask = pm_mesh_mask(s, W, H);
+    uint32_t *mask = mesh_mask(s, W, H);
 
     il_render_desc pt = {.method = IL_METHOD_PT, .spp = 4096, .max_depth = 16, .threads = 2, .seed = 1};
-    il_image ref = pm_render_image(s, W, H, &pt, NULL);
+    il_image ref = render_desc_image(s, W, H, &pt, NULL);
     il_photon_desc pd = {.photons = 100000};
     il_render_desc rd = {.method = IL_METHOD_SPPM, .spp = 64, .max_depth = 16, .threads = 2,
                          .seed = 1, .photon = &pd};
-    il_image img = pm_render_image(s, W, H, &rd, NULL);
+    il_image img = render_desc_image(s, W, H, &rd, NULL);
     il_render_desc direct = {.method = IL_METHOD_PT, .spp = 64, .max_depth = 1, .threads = 2, .seed = 1};
-    il_image dimg = pm_render_image(s, W, H, &direct, NULL);
+    il_image dimg = render_desc_image(s, W, H, &direct, NULL);
 
     uint32_t n = 0;
     double e_pt = region_sum(s, &ref, mask, &n);

@@ -186,6 +186,19 @@ static inline il_vec3 il_hr_exposed_radiance(const il_hr_elem *e)
  * NULL when out of memory. */
 il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
                             il_hr_elem *src);
+
+/* Appends link l to the end of receiver r's list (the order refinement and
+ * gathering read it in). */
+static inline void il_hr_link_append(il_hr_elem *r, il_hr_link *l)
+{
+    l->next = NULL;
+    if (r->links_tail)
+        r->links_tail->next = l;
+    else
+        r->links = l;
+    r->links_tail = l;
+    r->num_links++;
+}
 /* Casts link l's visibility rays (r: its receiver).  parent_visible: the
  * link it replaces had every ray pass, so a few rays that all pass give
  * V = 1; split_if_visible: the refinement splits l as soon as any ray

@@ -25,17 +25,6 @@
 /* Quadtree levels whose children are refined in tasks of their own. */
 #define TASK_LEVELS 3
 
-static void append(il_hr_elem *r, il_hr_link *l)
-{
-    l->next = NULL;
-    if (r->links_tail)
-        r->links_tail->next = l;
-    else
-        r->links = l;
-    r->links_tail = l;
-    r->num_links++;
-}
-
 /* Whether the link is split when its visibility bound is vis_bound. */
 static bool splits(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l, float vis_bound)
 {
@@ -55,14 +44,14 @@ static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, 
     if (l->vis < 0.0f)
         il_hr_link_visibility(s, pool, r, l, parent_visible, splits(s, r, l, 1.0f));
     if (!splits(s, r, l, l->vis_bound) || pool->failed) {
-        append(r, l);
+        il_hr_link_append(r, l);
         return;
     }
     il_hr_elem *src = l->src;
     bool split_receiver = r->area >= src->area;
     il_hr_elem *kids = il_hr_children(s, split_receiver ? r : src, pool);
     if (!kids) {
-        append(r, l);
+        il_hr_link_append(r, l);
         return;
     }
     bool visible = l->vis >= 1.0f;

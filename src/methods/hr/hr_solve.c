@@ -142,12 +142,7 @@ static il_status setup(il_hr_solver *s, il_error *err)
             il_hr_link *l = il_hr_link_make(s, pool, r, &s->roots[j]);
             if (!l)
                 break;
-            if (r->links_tail)
-                r->links_tail->next = l;
-            else
-                r->links = l;
-            r->links_tail = l;
-            r->num_links++;
+            il_hr_link_append(r, l);
         }
     }
     if (pools_failed(s))

@@ -96,6 +96,18 @@ static inline float filter_weight(const pm_filter *f, float d2)
     return f->cone ? 1.0f - sqrtf(d2) * f->inv_kr : 1.0f - d2 * f->inv_r2;
 }
 
+/* gather, then the filter for the radius the photons were found in. */
+static il_status gather_filtered(const il_pm_map *map, const il_pm_lookup *q, il_vec3 p,
+                                 il_pm_scratch *scratch, const il_pm_neighbour **nb,
+                                 uint32_t *found, pm_filter *flt, il_error *err)
+{
+    float r2 = 0.0f;
+    il_status st = gather(map, q, p, scratch, nb, found, &r2, err);
+    if (st == IL_OK && *found > 0)
+        *flt = filter_for(q->filter, r2, map->power_scale);
+    return st;
+}
+
 /* The seed's fix for light leaking round corners and through thin walls:
  * only photons that landed on a surface facing the same way. */
 static inline bool normal_agrees(const il_photon *ph, il_vec3 n)
@@ -140,11 +152,10 @@ il_status il_pm_estimate(const il_pm_map *map, const il_pm_lookup *q, const il_b
     *out = v3s(0.0f);
     const il_pm_neighbour *nb = NULL;
     uint32_t found;
-    float r2 = 0.0f;
-    il_status st = gather(map, q, p, scratch, &nb, &found, &r2, err);
+    pm_filter flt;
+    il_status st = gather_filtered(map, q, p, scratch, &nb, &found, &flt, err);
     if (st != IL_OK || found == 0)
         return st;
-    const pm_filter flt = filter_for(q->filter, r2, map->power_scale);
     if (bsdf->type == IL_MATERIAL_DIFFUSE) {
         *out = v3_scale(lambert_sum(map, bsdf, n, wo, nb, found, &flt), flt.scale);
         return IL_OK;
@@ -169,11 +180,10 @@ il_status il_pm_irradiance_estimate(const il_pm_map *map, const il_pm_lookup *q,
     *out = v3s(0.0f);
     const il_pm_neighbour *nb = NULL;
     uint32_t found;
-    float r2 = 0.0f;
-    il_status st = gather(map, q, p, scratch, &nb, &found, &r2, err);
+    pm_filter flt;
+    il_status st = gather_filtered(map, q, p, scratch, &nb, &found, &flt, err);
     if (st != IL_OK || found == 0)
         return st;
-    const pm_filter flt = filter_for(q->filter, r2, map->power_scale);
     il_vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < found; i++) {
         const il_photon *ph = &map->photons[nb[i].index];
