@@ -5,7 +5,6 @@
  * path-traced reference (the issue's criterion), and the caustic is there:
  * the region is several times brighter than the lamp's direct light. */
 #include "mesh_compare.h"
-#include "scene/loader.h"
 
 #define W 64
 #define H 64
@@ -22,15 +21,7 @@ static il_scene *caustic_scene(void)
     add_floor(s, 0.0f, 1.5f, white);
     /* The lamp faces down: front face cross(ex, ey) = -y. */
     add_quad(s, v3(0.0f, 2.0f, 0.0f), v3(0.2f, 0.0f, 0.0f), v3(0.0f, 0.0f, 0.2f), lamp);
-    il_shape_mesh ball;
-    CHECK_OK(il_shape_sphere(0.25f, 64, &ball, &g_err), &g_err);
-    for (uint32_t v = 0; v < ball.num_vertices; v++)
-        ball.positions[3 * v + 1] += 0.5f;
-    il_mesh_desc md = {.num_vertices = ball.num_vertices, .num_triangles = ball.num_triangles,
-                       .positions = ball.positions, .normals = ball.normals, .indices = ball.indices,
-                       .material = glass};
-    CHECK_OK(il_scene_add_mesh(s, &md, &g_err), &g_err);
-    il_shape_free(&ball);
+    add_ball(s, v3(0.0f, 0.5f, 0.0f), 0.25f, glass);
     set_camera(s, v3(0.0f, 1.6f, 1.8f), v3(0.0f, 0.0f, 0.0f), v3(0.0f, 1.0f, 0.0f), 40.0f);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
     return s;
