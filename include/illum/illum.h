@@ -113,10 +113,25 @@ typedef struct il_light_desc {
     float spot_exponent; /* SPOT: falloff exponent n of cos^n; 0 means none */
 } il_light_desc;
 
-/* Light from infinitely far away: the sky.  For now a constant radiance (a
- * uniform sky); environment maps plug in here later. */
+/* How an environment map's texels cover the sphere of directions
+ * (docs/environment.md draws each; +y is up). */
+typedef enum il_env_mapping {
+    IL_ENV_LATLONG = 0,  /* latitude-longitude (equirectangular), 2:1 */
+    IL_ENV_ANGULAR,      /* Debevec's angular light probe, square */
+    IL_ENV_CROSS         /* vertical cross of six cube faces, 3:4 */
+} il_env_mapping;
+
+/* Light from infinitely far away: the sky.  Without a map, a constant
+ * radiance from every direction; with a map, the map's texels are radiance
+ * in W/(sr m^2), linear Rec.709. */
 typedef struct il_environment_desc {
-    il_vec3 radiance;    /* W/(sr m^2) arriving from every direction */
+    il_vec3 radiance;    /* no map: W/(sr m^2) arriving from every direction;
+                            ignored when map is set */
+    const struct il_image *map; /* optional environment map; copied by
+                                   il_scene_set_environment */
+    il_env_mapping mapping;
+    float rotation;      /* degrees about +y, counter-clockwise seen from above */
+    float intensity;     /* multiplies the map; 0 means 1 */
 } il_environment_desc;
 
 /* ----------------------------------------------------------------- camera */
@@ -226,11 +241,48 @@ typedef struct il_image {
 
 typedef enum il_exr_precision { IL_EXR_HALF = 0, IL_EXR_FLOAT } il_exr_precision;
 
+/* Tone mapping: HDR radiance to display values (docs/tonemapping.md).  It
+ * happens only at output: films and EXR/HDR/PFM files keep radiance. */
+typedef enum il_tonemap_op {
+    IL_TONEMAP_LINEAR = 0,   /* scale by the exposure, clamp, sRGB transfer */
+    IL_TONEMAP_GAMMA,        /* scale, clamp, a plain power 1/gamma */
+    IL_TONEMAP_REINHARD,     /* Reinhard et al. 2002 global operator with white point */
+    IL_TONEMAP_FILMIC        /* ACES filmic curve (Narkowicz 2015 fit) */
+} il_tonemap_op;
+
+typedef struct il_tonemap_desc {
+    il_tonemap_op op;
+    float exposure;          /* EV: radiance times 2^exposure first (0 means none) */
+    bool auto_exposure;      /* choose the exposure from the image: the luminance
+                                at auto_percentile maps to 1 (adds to exposure) */
+    float auto_percentile;   /* 0 means 99 (percent) */
+    float gamma;             /* IL_TONEMAP_GAMMA: 0 means 2.2 */
+    float white;             /* IL_TONEMAP_REINHARD: luminance (after exposure) that
+                                maps to white; 0 means the image's largest */
+    float bloom;             /* fraction of the light above bloom_threshold spread
+                                into the glare; 0 means no bloom */
+    float bloom_threshold;   /* luminance (after exposure) where bloom starts; 0 means 1 */
+    float bloom_radius;      /* spread as a fraction of the image diagonal; 0 means 0.02 */
+} il_tonemap_desc;
+
+/* Maps an HDR image to display values in [0, 1] (after the transfer
+ * function), into a newly allocated image.  desc may be NULL (linear, EV 0). */
+il_status il_tonemap(const il_image *in, const il_tonemap_desc *desc, il_image *out,
+                     il_error *err);
+
 typedef struct il_write_desc {
     float exposure;              /* PNG only: multiply by 2^exposure before the sRGB
-                                    transfer (0 means none) */
+                                    transfer (0 means none); ignored with tonemap */
     il_exr_precision exr_precision;
+    const il_tonemap_desc *tonemap; /* PNG only: the operator; NULL means linear
+                                       with exposure above */
 } il_write_desc;
+
+/* Resamples an environment map from one mapping to another (bilinear
+ * lookups, supersampled); width is the output's width (0: about the same
+ * texel density as the input).  Rotation is not applied. */
+il_status il_envmap_convert(const il_image *src, il_env_mapping from, il_env_mapping to,
+                            uint32_t width, il_image *dst, il_error *err);
 
 /* Reads PNG, JPEG (8-bit sRGB, decoded to linear), HDR (RGBE), EXR and PFM. */
 il_status il_image_read(const char *path, il_image *out, il_error *err);
@@ -273,7 +325,8 @@ typedef enum il_method {
     IL_METHOD_RADIOSITY,     /* progressive-refinement radiosity (docs/radiosity.md) */
     IL_METHOD_HR,            /* hierarchical radiosity (docs/hierarchical-radiosity.md) */
     IL_METHOD_PHOTON,        /* photon mapping: global + caustic maps (docs/photon-mapping.md) */
-    IL_METHOD_SPPM           /* stochastic progressive photon mapping (docs/photon-mapping.md) */
+    IL_METHOD_SPPM,          /* stochastic progressive photon mapping (docs/photon-mapping.md) */
+    IL_METHOD_IBL            /* environment map as many directional lights (docs/ibl.md) */
 } il_method;
 typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
 typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
@@ -433,6 +486,43 @@ typedef struct il_photon_stats {
     uint32_t bytes_per_photon; /* one stored photon */
 } il_photon_stats;
 
+/* ------------------------------------------------- many-light environment */
+
+/* How IL_METHOD_IBL picks the directions of its lights from the map. */
+typedef enum il_ibl_selection {
+    IL_IBL_IMPORTANCE_SOBOL = 0, /* the map's importance distribution, Sobol points */
+    IL_IBL_IMPORTANCE,       /* the map's importance distribution, random points */
+    IL_IBL_SOBOL,            /* uniform over the sphere, Sobol points */
+    IL_IBL_RANDOM            /* uniform over the sphere, random points */
+} il_ibl_selection;
+
+typedef enum il_ibl_shadows {
+    IL_IBL_SHADOW_RAYS = 0,  /* exact: a shadow ray per light and pixel sample */
+    IL_IBL_SHADOW_MAPS,      /* a shadow map per light, percentage-closer filtered */
+    IL_IBL_SHADOW_NONE
+} il_ibl_shadows;
+
+/* Kemmer 2005: the environment becomes N directional lights of radiance /
+ * pdf / N each, shading the first surface the camera sees (mirrors and
+ * glass are followed to it). */
+typedef struct il_ibl_desc {
+    uint32_t lights;           /* N; 0 means 1024 */
+    il_ibl_selection selection;
+    il_ibl_shadows shadows;
+    uint32_t batch;            /* lights added per progressive step; 0 means 64 */
+    uint32_t shadow_map_size;  /* texels per side; 0 means 512 */
+    float shadow_bias;         /* fraction of the scene's diagonal; 0 means 0.001 */
+    uint32_t pcf_taps;         /* percentage-closer filter width in texels (odd);
+                                  0 means 3 */
+} il_ibl_desc;
+
+typedef struct il_ibl_stats {
+    uint32_t lights;           /* lights used */
+    uint64_t shadow_rays;
+    double seconds_lights;     /* building the light set (and the shadow maps) */
+    double seconds_shade;
+} il_ibl_stats;
+
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
@@ -449,6 +539,7 @@ typedef struct il_render_desc {
     const il_radiosity_desc *radiosity; /* IL_METHOD_RADIOSITY options; NULL: defaults */
     const il_hr_desc *hr;    /* IL_METHOD_HR options; NULL: defaults */
     const il_photon_desc *photon; /* IL_METHOD_PHOTON and IL_METHOD_SPPM options; NULL: defaults */
+    const il_ibl_desc *ibl;  /* IL_METHOD_IBL options; NULL: defaults */
 } il_render_desc;
 
 typedef struct il_render_stats {
@@ -459,6 +550,7 @@ typedef struct il_render_stats {
     il_radiosity_stats radiosity; /* IL_METHOD_RADIOSITY only */
     il_hr_stats hr;          /* IL_METHOD_HR only */
     il_photon_stats photon;  /* IL_METHOD_PHOTON and IL_METHOD_SPPM only */
+    il_ibl_stats ibl;        /* IL_METHOD_IBL only */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is

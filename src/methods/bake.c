@@ -30,6 +30,8 @@ static const char *method_name(il_method m)
         return "photon";
     case IL_METHOD_SPPM:
         return "sppm";
+    case IL_METHOD_IBL:
+        return "ibl";
     }
     return NULL;
 }

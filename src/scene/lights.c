@@ -307,13 +307,13 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
         out->pdf = pmf * area_to_solid_angle(l->area, dist2, v3_dot(ng, out->wi));
         return out->pdf > 0.0f && isfinite(out->pdf) && !v3_is_zero(out->radiance);
     }
-    case IL_LIGHTK_ENVIRONMENT:
-        /* Uniform over the sphere of directions (pbrt-v4 12.5.1). */
-        out->wi = il_sample_uniform_sphere(u);
+    case IL_LIGHTK_ENVIRONMENT: {
+        float pdf_dir;
+        out->radiance = il_environment_sample(s, u, &out->wi, &pdf_dir);
         out->dist = INFINITY;
-        out->radiance = il_environment_radiance(s, out->wi);
-        out->pdf = pmf * IL_INV_4PI;
-        return true;
+        out->pdf = pmf * pdf_dir;
+        return out->pdf > 0.0f;
+    }
     }
     return false;
 }
@@ -332,8 +332,21 @@ float il_light_pdf_area(const il_scene *s, uint32_t light, il_vec3 p, il_vec3 p_
 
 float il_light_pdf_environment(const il_scene *s, il_vec3 dir)
 {
-    (void)dir;
     if (s->environment_light == IL_NO_LIGHT)
         return 0.0f;
-    return s->light_pmf[s->environment_light] * IL_INV_4PI;
+    return s->light_pmf[s->environment_light] * il_environment_pdf(s, dir);
+}
+
+il_vec3 il_environment_sample(const il_scene *s, il_vec2 u, il_vec3 *dir, float *pdf)
+{
+    /* A constant sky: uniform over the sphere of directions (pbrt-v4 12.5.1). */
+    *dir = il_sample_uniform_sphere(u);
+    *pdf = s->has_environment ? IL_INV_4PI : 0.0f;
+    return il_environment_radiance(s, *dir);
+}
+
+float il_environment_pdf(const il_scene *s, il_vec3 dir)
+{
+    (void)dir;
+    return s->has_environment ? IL_INV_4PI : 0.0f;
 }

@@ -39,5 +39,13 @@ float il_light_pdf_environment(const il_scene *scene, il_vec3 dir);
 il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w);
 /* Radiance arriving from the environment along direction -dir (dir points away from the scene). */
 il_vec3 il_environment_radiance(const il_scene *scene, il_vec3 dir);
+/* Samples a direction towards the environment (pointing away from the
+ * scene) for u in [0,1)^2: importance sampled from a map, uniform over the
+ * sphere for a constant sky.  Returns the radiance arriving from *dir and
+ * sets *pdf, its solid-angle density (without any light-selection
+ * probability); *pdf is 0 when the scene has no environment. */
+il_vec3 il_environment_sample(const il_scene *scene, il_vec2 u, il_vec3 *dir, float *pdf);
+/* The solid-angle density of il_environment_sample choosing dir. */
+float il_environment_pdf(const il_scene *scene, il_vec3 dir);
 
 #endif
