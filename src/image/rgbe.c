@@ -1,85 +1,72 @@
-/* Radiance HDR (RGBE) files: Greg Ward, "Real Pixels", Graphics Gems II
- * (1991), section II.5, and the Radiance file format notes (header,
- * "-Y H +X W" resolution string, new-style run-length encoded scanlines).
+/* Radiance HDR (RGBE) pixels and writing: Greg Ward, "Real Pixels", Graphics
+ * Gems II (1991), section II.5, and the "Radiance file formats" notes
+ * (Radiance reference manual, "Picture file format").  Reading is in
+ * rgbe_read.c.
  *
- * Writing is our own: flat scanlines for widths the RLE cannot express
- * (< 8 or >= 32768), new-style RLE otherwise.  Reading goes through
- * stb_image's stbi_loadf; because stb_image silently fills a truncated file
- * with zeros (and can loop forever on a truncated RLE stream), the file's
- * structure is first checked here, byte for byte, against what stb_image
- * will read. */
+ * The writer writes a standard header (FORMAT=32-bit_rle_rgbe, "-Y H +X W"),
+ * then new-style run-length encoded scanlines for widths 8..32767 and flat
+ * (uncompressed) ones for other widths, which new-style RLE cannot express. */
 #include "image/image_io.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <stb/stb_image.h>
 
 #include "core/error.h"
 
 /* ------------------------------------------------------------ pixels */
 
-/* Largest/smallest exponent byte: value = mantissa * 2^(byte - 136). */
-#define RGBE_MAX_EXP 127
-#define RGBE_MIN_EXP (-127)
+/* Exponent byte b stands for 2^(b - 128): value = (m + 0.5) 2^(b - 136). */
+#define RGBE_EXCESS 128
+#define RGBE_MAX_EXP 127 /* byte 255 */
 
-static float rgbe_sanitize(float v)
+static double rgbe_sanitize(float v)
 {
     if (!(v > 0.0f)) /* NaN and negatives: RGBE cannot represent them */
-        return 0.0f;
+        return 0.0;
     return v;
 }
 
+/* Ward's setcolr (Graphics Gems II, II.5): with v the largest channel and
+ * v = f 2^e, f in [0.5, 1), each mantissa is m = floor(c 2^(8-e)) < 256 and
+ * the exponent byte e + 128.  Decoding by (m + 0.5) 2^(e-8) puts every
+ * channel within half a mantissa step, 2^(e-9) <= 2^-8 v, of its value: the
+ * same bound as rounding to nearest with an m 2^(e-8) decoder, but matching
+ * the standard decoder (Radiance's colr_color).  As in Radiance, a pixel whose
+ * largest channel is at most 1e-32 is black; values too large for the format
+ * (+Inf included) are clamped to its largest exponent. */
 void il_rgbe_encode(const float rgb[3], unsigned char rgbe[4])
 {
     double c[3] = {rgbe_sanitize(rgb[0]), rgbe_sanitize(rgb[1]), rgbe_sanitize(rgb[2])};
     double v = fmax(c[0], fmax(c[1], c[2]));
-    if (v <= 0.0) {
+    if (!(v > 1e-32)) {
         memset(rgbe, 0, 4);
         return;
     }
     int e = RGBE_MAX_EXP + 1;
     if (isfinite(v))
-        (void)frexp(v, &e); /* v = m 2^e, m in [0.5, 1) */
-    if (e > RGBE_MAX_EXP) {
-        /* Beyond the format's range (or +Inf): clamp to the largest value. */
-        e = RGBE_MAX_EXP;
-        for (int k = 0; k < 3; k++)
-            c[k] = c[k] >= v ? 255.0 : fmin(255.0, c[k] * ldexp(1.0, 8 - e));
-        for (int k = 0; k < 3; k++)
-            rgbe[k] = (unsigned char)lrint(c[k]);
-        rgbe[3] = (unsigned char)(e + 128);
-        return;
-    }
-    if (e < RGBE_MIN_EXP)
-        e = RGBE_MIN_EXP;
-    /* Ward truncates; rounding to nearest halves the error to at most 2^-8
-     * of the largest component.  Rounding can carry the largest mantissa to
-     * 256, then the exponent goes up by one. */
-    double scale = ldexp(1.0, 8 - e);
-    if (lrint(v * scale) > 255 && e < RGBE_MAX_EXP) {
-        e++;
-        scale = ldexp(1.0, 8 - e);
-    }
+        (void)frexp(v, &e); /* v = f 2^e, f in [0.5, 1) */
+    if (e > RGBE_MAX_EXP)
+        e = RGBE_MAX_EXP; /* the largest channel saturates at m = 255 below */
+    double scale = ldexp(1.0, 8 - e); /* exact: a power of two */
     for (int k = 0; k < 3; k++) {
-        long m = lrint(c[k] * scale);
-        rgbe[k] = (unsigned char)(m > 255 ? 255 : m);
+        double m = floor(c[k] * scale); /* exact in double; Inf stays Inf */
+        rgbe[k] = (unsigned char)(m > 255.0 ? 255.0 : m);
     }
-    rgbe[3] = (unsigned char)(e + 128);
+    rgbe[3] = (unsigned char)(e + RGBE_EXCESS);
 }
 
+/* Radiance's colr_color: (m + 0.5) 2^(e - 136); a zero exponent byte is
+ * black.  Exact in float: a 9-bit significand times a power of two no smaller
+ * than 2^-136 (a float subnormal, representable down to 2^-149). */
 void il_rgbe_decode(const unsigned char rgbe[4], float rgb[3])
 {
     if (rgbe[3] == 0) {
         rgb[0] = rgb[1] = rgb[2] = 0.0f;
         return;
     }
-    /* Same formula as stb_image (no +0.5 offset: our encoder rounds). */
-    float f = ldexpf(1.0f, (int)rgbe[3] - (128 + 8));
     for (int k = 0; k < 3; k++)
-        rgb[k] = rgbe[k] * f;
+        rgb[k] = ldexpf((float)rgbe[k] + 0.5f, (int)rgbe[3] - (RGBE_EXCESS + 8));
 }
 
 /* ------------------------------------------------------------ write */
@@ -161,157 +148,5 @@ done:
     free(pix);
     free(plane);
     free(out);
-    return st;
-}
-
-/* ------------------------------------------------------------- read */
-
-/* Reads one header line (without its '\n') into buf; false at the end of the
- * data (a header line must end with '\n').  Overlong lines are cut, as
- * stb_image does. */
-static bool header_line(const unsigned char **p, const unsigned char *end, char *buf, size_t cap)
-{
-    size_t n = 0;
-    while (*p < end && **p != '\n') {
-        if (n + 1 < cap)
-            buf[n++] = (char)**p;
-        (*p)++;
-    }
-    buf[n] = '\0';
-    if (*p >= end)
-        return false;
-    (*p)++; /* the '\n' */
-    return true;
-}
-
-static bool parse_dim(const char **s, long *out)
-{
-    if (**s < '0' || **s > '9')
-        return false;
-    char *end;
-    *out = strtol(*s, &end, 10);
-    *s = end;
-    return true;
-}
-
-/* Checks the pixel stream that starts at p: complete, and well-formed the
- * way stb_image's decoder expects (which otherwise reads past the end as
- * zeros). */
-static il_status check_pixels(const unsigned char *p, const unsigned char *end, size_t w,
-                              size_t h, const char *path, il_error *err)
-{
-    size_t avail = (size_t)(end - p);
-    bool flat = w < 8 || w >= 32768;
-    if (!flat && avail >= 4 && !(p[0] == 2 && p[1] == 2 && !(p[2] & 0x80)))
-        flat = true; /* an uncompressed file of RLE-able width */
-    if (flat) {
-        if (avail / 4 / w < h)
-            return il_fail(err, IL_ERR_FORMAT, "%s: HDR pixel data is truncated", path);
-        return IL_OK;
-    }
-    for (size_t y = 0; y < h; y++) {
-        if ((size_t)(end - p) < 4)
-            return il_fail(err, IL_ERR_FORMAT, "%s: HDR pixel data is truncated (scanline %zu)",
-                           path, y);
-        if (p[0] != 2 || p[1] != 2 || (p[2] & 0x80))
-            return il_fail(err, IL_ERR_FORMAT,
-                           "%s: HDR scanline %zu is not run-length encoded like the others", path,
-                           y);
-        if (((size_t)p[2] << 8 | p[3]) != w)
-            return il_fail(err, IL_ERR_FORMAT, "%s: HDR scanline %zu has the wrong length", path, y);
-        p += 4;
-        for (int k = 0; k < 4; k++) {
-            size_t x = 0;
-            while (x < w) {
-                if (p >= end)
-                    return il_fail(err, IL_ERR_FORMAT,
-                                   "%s: HDR pixel data is truncated (scanline %zu)", path, y);
-                unsigned count = *p++;
-                if (count > 128) {
-                    count -= 128;
-                    if (count > w - x || p >= end)
-                        return il_fail(err, IL_ERR_FORMAT,
-                                       "%s: HDR scanline %zu has a bad run (corrupt or truncated)",
-                                       path, y);
-                    p++;
-                } else {
-                    if (count == 0 || count > w - x || (size_t)(end - p) < count)
-                        return il_fail(err, IL_ERR_FORMAT,
-                                       "%s: HDR scanline %zu has bad data (corrupt or truncated)",
-                                       path, y);
-                    p += count;
-                }
-                x += count;
-            }
-        }
-    }
-    return IL_OK;
-}
-
-il_status il_hdr_read(const unsigned char *data, size_t size, const char *path, il_image *out,
-                      il_error *err)
-{
-    const unsigned char *p = data, *end = data + size;
-    char line[1024];
-    if (!header_line(&p, end, line, sizeof line) ||
-        (strcmp(line, "#?RADIANCE") != 0 && strcmp(line, "#?RGBE") != 0))
-        return il_fail(err, IL_ERR_FORMAT, "%s: not a Radiance HDR file (expected '#?RADIANCE')",
-                       path);
-    bool rgbe = false;
-    for (;;) {
-        if (!header_line(&p, end, line, sizeof line))
-            return il_fail(err, IL_ERR_FORMAT, "%s: HDR header is truncated", path);
-        if (line[0] == '\0')
-            break;
-        if (strcmp(line, "FORMAT=32-bit_rle_rgbe") == 0)
-            rgbe = true;
-        else if (strncmp(line, "FORMAT=", 7) == 0)
-            return il_fail(err, IL_ERR_FORMAT, "%s: unsupported HDR pixel format '%s'", path,
-                           line + 7);
-    }
-    if (!rgbe)
-        return il_fail(err, IL_ERR_FORMAT, "%s: HDR header lacks FORMAT=32-bit_rle_rgbe", path);
-    if (!header_line(&p, end, line, sizeof line))
-        return il_fail(err, IL_ERR_FORMAT, "%s: HDR resolution line is missing or truncated",
-                       path);
-    const char *s = line;
-    long h = 0, w = 0;
-    bool ok = strncmp(s, "-Y ", 3) == 0;
-    if (ok) {
-        s += 3;
-        ok = parse_dim(&s, &h);
-    }
-    while (ok && *s == ' ')
-        s++;
-    ok = ok && strncmp(s, "+X ", 3) == 0;
-    if (ok) {
-        s += 3;
-        ok = parse_dim(&s, &w) && *s == '\0';
-    }
-    if (!ok)
-        return il_fail(err, IL_ERR_FORMAT,
-                       "%s: unsupported HDR orientation or bad resolution line '%s' (need '-Y H +X W')",
-                       path, line);
-    il_status st = il_image_check_size((uint64_t)w, (uint64_t)h, path, err);
-    if (st == IL_OK)
-        st = check_pixels(p, end, (size_t)w, (size_t)h, path, err);
-    if (st != IL_OK)
-        return st;
-    if (size > INT_MAX)
-        return il_fail(err, IL_ERR_FORMAT, "%s: HDR file is too large (%zu bytes)", path, size);
-
-    int sw = 0, sh = 0, comp = 0;
-    float *pixels = stbi_loadf_from_memory(data, (int)size, &sw, &sh, &comp, 3);
-    if (!pixels)
-        return il_fail(err, IL_ERR_FORMAT, "%s: cannot decode HDR: %s", path,
-                       stbi_failure_reason());
-    if (sw != w || sh != h) {
-        stbi_image_free(pixels);
-        return il_fail(err, IL_ERR_FORMAT, "%s: HDR decoder disagrees on the size", path);
-    }
-    st = il_image_alloc(out, (uint32_t)w, (uint32_t)h, err);
-    if (st == IL_OK)
-        memcpy(out->rgb, pixels, (size_t)w * (size_t)h * 3 * sizeof(float));
-    stbi_image_free(pixels);
     return st;
 }
