@@ -253,20 +253,27 @@ typedef enum il_tonemap_op {
 typedef struct il_tonemap_desc {
     il_tonemap_op op;
     float exposure;          /* EV: radiance times 2^exposure first (0 means none) */
-    bool auto_exposure;      /* choose the exposure from the image: the luminance
-                                at auto_percentile maps to 1 (adds to exposure) */
-    float auto_percentile;   /* 0 means 99 (percent) */
+    bool auto_exposure;      /* choose the exposure from the image: the Rec.709
+                                luminance at auto_percentile (nearest rank, over
+                                the pixels that are not black) maps to 1; this
+                                multiplies with 2^exposure */
+    float auto_percentile;   /* in (0, 100]; 0 means 99 (percent) */
     float gamma;             /* IL_TONEMAP_GAMMA: 0 means 2.2 */
     float white;             /* IL_TONEMAP_REINHARD: luminance (after exposure) that
                                 maps to white; 0 means the image's largest */
     float bloom;             /* fraction of the light above bloom_threshold spread
                                 into the glare; 0 means no bloom */
     float bloom_threshold;   /* luminance (after exposure) where bloom starts; 0 means 1 */
-    float bloom_radius;      /* spread as a fraction of the image diagonal; 0 means 0.02 */
+    float bloom_radius;      /* spread: the standard deviation of the glare's widest
+                                Gaussian as a fraction of the image diagonal, up to
+                                1; 0 means 0.02.  Bloom keeps each channel's total */
 } il_tonemap_desc;
 
 /* Maps an HDR image to display values in [0, 1] (after the transfer
- * function), into a newly allocated image.  desc may be NULL (linear, EV 0). */
+ * function), into a newly allocated image (`out` may be `in`: its pixels are
+ * replaced).  desc may be NULL (linear, EV 0).  A pixel with a NaN or
+ * infinite channel becomes black, a negative channel 0.  Bad desc fields are
+ * IL_ERR_INVALID. */
 il_status il_tonemap(const il_image *in, const il_tonemap_desc *desc, il_image *out,
                      il_error *err);
 
@@ -326,13 +333,16 @@ typedef enum il_method {
     IL_METHOD_HR,            /* hierarchical radiosity (docs/hierarchical-radiosity.md) */
     IL_METHOD_PHOTON,        /* photon mapping: global + caustic maps (docs/photon-mapping.md) */
     IL_METHOD_SPPM,          /* stochastic progressive photon mapping (docs/photon-mapping.md) */
-    IL_METHOD_IBL            /* environment map as many directional lights (docs/ibl.md) */
+    IL_METHOD_IBL,           /* environment map as many directional lights (docs/ibl.md) */
+    IL_METHOD_LINESPACE,     /* Linespace light injection (docs/linespace.md) */
+    IL_METHOD_RSM            /* reflective shadow maps with a shadow test (docs/rsm.md) */
 } il_method;
 typedef enum il_sampler_type { IL_SAMPLER_SOBOL = 0, IL_SAMPLER_PCG } il_sampler_type;
 typedef enum il_filter_type { IL_FILTER_BOX = 0, IL_FILTER_GAUSSIAN } il_filter_type;
 
 typedef struct il_render_progress {
-    uint32_t passes_done;    /* samples per pixel completed so far */
+    uint32_t passes_done;    /* samples per pixel completed so far (IL_METHOD_IBL:
+                                lights so far; passes_total: all its lights) */
     uint32_t passes_total;   /* 0 when rendering for a time */
     double seconds;          /* since the render started */
     double time_limit;       /* 0 when rendering a sample count */
@@ -504,29 +514,118 @@ typedef enum il_ibl_shadows {
 
 /* Kemmer 2005: the environment becomes N directional lights of radiance /
  * pdf / N each, shading the first surface the camera sees (mirrors and
- * glass are followed to it). */
+ * glass are followed to it, up to max_depth - 1 bounces).  The scene's
+ * point, spot and directional lights and emitters light it too.  With
+ * large N the image converges to the path tracer's with max_depth 1
+ * (docs/ibl.md).  The scene needs an environment. */
 typedef struct il_ibl_desc {
-    uint32_t lights;           /* N; 0 means 1024 */
+    uint32_t lights;           /* N, at most 2^24; 0 means 1024 */
     il_ibl_selection selection;
     il_ibl_shadows shadows;
-    uint32_t batch;            /* lights added per progressive step; 0 means 64 */
-    uint32_t shadow_map_size;  /* texels per side; 0 means 512 */
-    float shadow_bias;         /* fraction of the scene's diagonal; 0 means 0.001 */
-    uint32_t pcf_taps;         /* percentage-closer filter width in texels (odd);
-                                  0 means 3 */
+    uint32_t batch;            /* lights added per progressive step; the film is
+                                  complete after each; 0 means 64 */
+    uint32_t shadow_map_size;  /* texels per side, at most 8192; 0 means 512 */
+    float shadow_bias;         /* fraction of the scene's diagonal, at most 1;
+                                  0 means 0.001 */
+    uint32_t pcf_taps;         /* percentage-closer filter width in texels (odd,
+                                  at most 15); 0 means 3 */
 } il_ibl_desc;
 
 typedef struct il_ibl_stats {
-    uint32_t lights;           /* lights used */
-    uint64_t shadow_rays;
+    uint32_t lights;           /* lights in the film (fewer than asked for when
+                                  stopped by the time limit or the callback) */
+    uint64_t shadow_rays;      /* of the environment's lights (the other lights'
+                                  are in il_render_stats.rays) */
     double seconds_lights;     /* building the light set (and the shadow maps) */
-    double seconds_shade;
+    double seconds_shade;      /* camera samples and shading */
 } il_ibl_stats;
+
+/* -------------------------------------------------- reflective shadow maps */
+
+/* Dachsbacher & Stamminger 2005, "Reflective Shadow Maps", as in Nilles 2017
+ * (IL_METHOD_RSM, docs/rsm.md).  Every spot light gets a map of the surfaces
+ * it lights directly, ray cast through a perspective grid of texels (a spot
+ * wider than 60 degrees and a point light: six cube faces; a directional
+ * light: one orthographic map over the scene), holding per texel the world
+ * position, normal, area and reflected flux.  The first non-specular surface
+ * a camera ray reaches takes direct light as the path tracer does, and one
+ * bounce of indirect light from the texels, each a small Lambertian emitter.
+ * Area lights and the environment light directly only. */
+typedef struct il_rsm_desc {
+    uint32_t resolution;     /* texels per side of each map, 1 to 4096; 0 means 512 */
+    uint32_t samples;        /* texels gathered per shading point and map, 1 to
+                                65536; 0 means 400 (Dachsbacher & Stamminger) */
+    float radius;            /* r_max: radius of the sampling disk around the
+                                point's projection, as a fraction of the map's
+                                side, up to 2; 0 means 1.5, which covers the
+                                whole map (unbiased); smaller is the paper's
+                                faster, biased choice */
+    bool all_texels;         /* gather every texel of every map (the exact sum;
+                                samples and radius are ignored) */
+    bool shadow_test;        /* Nilles 2017 eq. 11: a shadow ray between the
+                                shading point and every texel gathered */
+} il_rsm_desc;
+
+typedef struct il_rsm_stats {
+    uint32_t maps;           /* faces rendered (one per spot, six per point light) */
+    uint32_t resolution;     /* texels per side */
+    uint64_t texels;         /* texels that hold reflected flux, all maps */
+    uint64_t map_bytes;
+    uint64_t gathered;       /* texel contributions evaluated */
+    uint64_t shadow_rays;    /* of the shadow test */
+    double seconds_build;    /* ray casting the maps */
+    double seconds_gather;   /* the camera pass with the gathering */
+} il_rsm_stats;
+
+/* ------------------------------------------------------------- linespace */
+
+/* Nilles 2017 light injection into a grid of Linespaces (Keul et al. 2016),
+ * IL_METHOD_LINESPACE, docs/linespace.md.  Light paths from every light
+ * leave, along each segment after their first hit, flux x length in the
+ * shaft (pair of boundary patches) and direction of every voxel they cross;
+ * a path tracer reads that back as radiance at its diffuse hits instead of
+ * tracing on.  Sizes are fractions of a voxel, so the options are scale-free. */
+typedef struct il_linespace_desc {
+    uint32_t grid;             /* voxels along the scene's longest side (the others
+                                  in proportion, voxels near cubic), 1 to 256; 0 means 8 */
+    uint32_t n;                /* N: patches per face side (15 N^4 shafts per voxel),
+                                  1 to 8; 0 means 4 */
+    uint64_t inject_rays;      /* light paths injected, at most 10^10; 0 means 1,000,000 */
+    uint32_t inject_depth;     /* bounces a light path takes; 0 means max_depth - 1 */
+    float blur;                /* radius of the disk the lookup point is jittered on,
+                                  as a fraction of the voxel's smallest side, at most 4;
+                                  0 means none */
+    bool no_occlusion_test;    /* skip the in-shaft occlusion test (on by default) */
+    bool no_fallback;          /* an empty or occluded shaft gives no light instead of
+                                  tracing on (fallback is on by default) */
+    bool no_solid_angle;       /* normalise every shaft as if all subtended the same
+                                  solid angle (the thesis's reading; grid patterns) */
+    float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
+    float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
+} il_linespace_desc;
+
+typedef struct il_linespace_stats {
+    uint32_t grid[3];          /* voxels per axis */
+    uint32_t n;
+    uint64_t voxels;           /* voxels holding a Linespace (non-empty) */
+    uint64_t shafts;           /* shafts stored (those containing geometry) */
+    uint64_t candidates;       /* candidate triangle references of all stored shafts */
+    uint64_t overflow_shafts;  /* shafts whose occlusion test casts a ray instead */
+    uint64_t memory_bytes;     /* the whole structure */
+    uint64_t inject_rays;      /* light paths emitted */
+    uint64_t injected_segments; /* (segment, voxel) deposits */
+    uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded;
+    double seconds_build;      /* grid, shafts and candidate lists */
+    double seconds_inject;
+    double seconds_sample;     /* the camera pass */
+} il_linespace_stats;
 
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
-                                time_limit is set */
+                                time_limit is set (IL_METHOD_IBL: camera samples,
+                                each shaded by every light; 0 means 1, and the time
+                                limit bounds the lights instead) */
     double time_limit;       /* seconds; 0 means none */
     uint32_t max_depth;      /* most bounces (scattering events) on a path; 1 is
                                 direct lighting only; 0 means 8 */
@@ -540,6 +639,8 @@ typedef struct il_render_desc {
     const il_hr_desc *hr;    /* IL_METHOD_HR options; NULL: defaults */
     const il_photon_desc *photon; /* IL_METHOD_PHOTON and IL_METHOD_SPPM options; NULL: defaults */
     const il_ibl_desc *ibl;  /* IL_METHOD_IBL options; NULL: defaults */
+    const il_rsm_desc *rsm;  /* IL_METHOD_RSM options; NULL: defaults */
+    const il_linespace_desc *linespace; /* IL_METHOD_LINESPACE options; NULL: defaults */
 } il_render_desc;
 
 typedef struct il_render_stats {
@@ -551,6 +652,8 @@ typedef struct il_render_stats {
     il_hr_stats hr;          /* IL_METHOD_HR only */
     il_photon_stats photon;  /* IL_METHOD_PHOTON and IL_METHOD_SPPM only */
     il_ibl_stats ibl;        /* IL_METHOD_IBL only */
+    il_rsm_stats rsm;        /* IL_METHOD_RSM only */
+    il_linespace_stats linespace; /* IL_METHOD_LINESPACE only */
 } il_render_stats;
 
 /* Renders the committed scene through its camera into the film (which is

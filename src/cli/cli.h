@@ -132,9 +132,105 @@ void cli_photon_stats_json(struct cJSON *parent, const il_photon_stats *stats);
 /* One line on stderr: photons, rate, maps, time per phase. */
 void cli_photon_summary(il_method method, const il_photon_stats *stats);
 
+/* The many-light environment options (cli_ibl.c), for render --method ibl. */
+typedef struct cli_ibl_options {
+    il_ibl_desc desc;
+    cli_method_note note;            /* any ibl option on the command line */
+} cli_ibl_options;
+
+extern const char cli_ibl_help[];
+/* As cli_radiosity_option, for --lights, --light-selection, --shadows,
+ * --batch, --shadow-map-size, --shadow-bias and --pcf. */
+bool cli_ibl_option(int argc, char **argv, int *i, cli_ibl_options *o, int *rc);
+/* Adds the "ibl" object of --stats (the options in effect and every
+ * il_ibl_stats field) to `parent`. */
+void cli_ibl_stats_json(struct cJSON *parent, const il_ibl_desc *desc, const il_ibl_stats *stats);
+/* One line on stderr: lights, selection, shadows, shadow rays, time per phase. */
+void cli_ibl_summary(const il_ibl_desc *desc, const il_ibl_stats *stats);
+
+/* The Linespace options (cli_linespace.c), for render --method linespace. */
+typedef struct cli_linespace_options {
+    il_linespace_desc desc;
+    cli_method_note note;            /* any linespace option on the command line */
+} cli_linespace_options;
+
+extern const char cli_linespace_help[];
+/* As cli_radiosity_option, for --grid, --linespace-n, --inject-rays,
+ * --inject-depth, --blur, --occlusion-test, --fallback, --solid-angle,
+ * --glossy-n1 and --glossy-n2. */
+bool cli_linespace_option(int argc, char **argv, int *i, cli_linespace_options *o, int *rc);
+/* Adds the "linespace" object of --stats (every il_linespace_stats field). */
+void cli_linespace_stats_json(struct cJSON *parent, const il_linespace_stats *stats);
+/* One line on stderr: grid, shafts, memory, injection and sampling times. */
+void cli_linespace_summary(const il_linespace_stats *stats);
+
+/* The reflective-shadow-map options (cli_rsm.c), for render --method rsm. */
+typedef struct cli_rsm_options {
+    il_rsm_desc desc;
+    cli_method_note note;            /* any rsm option on the command line */
+} cli_rsm_options;
+
+extern const char cli_rsm_help[];
+/* As cli_radiosity_option, for --rsm-size, --rsm-samples, --rsm-radius and
+ * --rsm-shadow-test. */
+bool cli_rsm_option(int argc, char **argv, int *i, cli_rsm_options *o, int *rc);
+/* Adds the "rsm" object of --stats (the options in effect and every
+ * il_rsm_stats field) to `parent`. */
+void cli_rsm_stats_json(struct cJSON *parent, const il_rsm_desc *desc, const il_rsm_stats *stats);
+/* One line on stderr: maps, texels, gathering, shadow rays, time per phase. */
+void cli_rsm_summary(const il_rsm_desc *desc, const il_rsm_stats *stats);
+
+/* The tone-mapping options (cli_tonemap.c), shared by render and tonemap:
+ * --tonemap OP (also --op when op_alias), --auto-exposure [PERCENTILE],
+ * --gamma G, --white W, --bloom K, --bloom-threshold T, --bloom-radius R.
+ * --exposure stays each command's own option. */
+typedef struct cli_tonemap_options {
+    il_tonemap_desc desc;
+    bool given;                      /* any of the options above */
+    const char *gamma_opt, *white_opt; /* given, for the operator check */
+} cli_tonemap_options;
+
+extern const char cli_tonemap_help[];
+/* As cli_radiosity_option; "--auto-exposure" takes the next argument as its
+ * percentile only when that is a number. */
+bool cli_tonemap_option(int argc, char **argv, int *i, bool op_alias, cli_tonemap_options *o,
+                        int *rc);
+/* After parsing: --gamma needs the gamma operator and --white reinhard
+ * (usage error, exit 2, naming `command`). */
+int cli_tonemap_check(const char *command, const cli_tonemap_options *o);
+/* The desc for PNG outputs, its exposure set to `exposure`; NULL when no
+ * tone-mapping option was given (the plain PNG transfer, as before). */
+const il_tonemap_desc *cli_tonemap_desc(cli_tonemap_options *o, float exposure);
+
+/* The environment-map options (cli_env.c), shared by render and bake:
+ * --env FILE, --env-mapping M, --env-intensity K, --env-rotate DEGREES. */
+typedef struct cli_env_options {
+    const char *file;                /* --env: NULL when not given */
+    il_env_mapping mapping;
+    bool has_mapping;                /* else guessed from the image's shape */
+    double intensity;                /* 0: 1 */
+    double rotation;                 /* degrees */
+    const char *first_setting;       /* the first --env-* option given, for messages */
+} cli_env_options;
+
+extern const char cli_env_help[];
+/* As cli_radiosity_option, for the four options above. */
+bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc);
+/* After parsing: an --env-* setting without --env is a usage error. */
+int cli_env_check(const char *command, const cli_env_options *o);
+/* Reads o->file and sets it as the scene's environment (before commit);
+ * prints the error (a missing, corrupt or misshapen map) and returns its
+ * exit status.  Does nothing when o is NULL or has no file. */
+int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
+/* cli_load_scene with the environment map of `env` (may be NULL) set
+ * between loading and committing. */
+int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);
+
 int cmd_render(int argc, char **argv);
+int cmd_tonemap(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_bake(int argc, char **argv);
+int cmd_envmap(int argc, char **argv);
 
 #endif

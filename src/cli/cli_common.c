@@ -128,11 +128,25 @@ bool cli_write_text_atomic(const char *path, const char *text)
 
 int cli_load_scene(const char *path, bool quiet, il_scene **out)
 {
+    return cli_load_scene_env(path, quiet, NULL, out);
+}
+
+int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out)
+{
     static bool quiet_flag;
     quiet_flag = quiet;
     il_error err = {0};
     il_load_desc ld = {.log = cli_log, .log_user = &quiet_flag};
     il_status st = il_scene_load(path, &ld, out, &err);
+    if (st == IL_OK && env && env->file) {
+        /* The map replaces the scene's sky before the light tables are built. */
+        int rc = cli_env_apply(*out, env, quiet);
+        if (rc != IL_EXIT_OK) {
+            il_scene_release(*out);
+            *out = NULL;
+            return rc;
+        }
+    }
     if (st == IL_OK)
         st = il_scene_commit(*out, &err);
     if (st != IL_OK) {

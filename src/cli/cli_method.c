@@ -1,4 +1,5 @@
-/* What the method-specific option sets (cli_radiosity.c, cli_hr.c) share:
+/* What the method-specific option sets (cli_radiosity.c, cli_hr.c, cli_photon.c,
+ * cli_ibl.c) share:
  * method names, matching an option of a set and fetching its value, the
  * --help check, and the usage error for an option of another method. */
 #include <stdio.h>
@@ -15,6 +16,9 @@ static const struct {
     {"hr", IL_METHOD_HR},
     {"photon", IL_METHOD_PHOTON},
     {"sppm", IL_METHOD_SPPM},
+    {"ibl", IL_METHOD_IBL},
+    {"linespace", IL_METHOD_LINESPACE},
+    {"rsm", IL_METHOD_RSM},
 };
 
 bool cli_method_from_name(const char *name, il_method *out)

@@ -39,6 +39,7 @@ typedef struct bake_options {
     bool quiet;
     cli_radiosity_options rad;
     cli_hr_options hr;
+    cli_env_options env;             /* --env and its settings */
 } bake_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -74,6 +75,11 @@ static int parse_options(int argc, char **argv, bake_options *o)
                 return opt_rc;
             continue;
         }
+        if (cli_env_option(argc, argv, &i, &o->env, &opt_rc)) {
+            if (opt_rc != IL_EXIT_OK)
+                return opt_rc;
+            continue;
+        }
 #define VALUE()                                   \
     do {                                          \
         if (!(v = cli_value(argc, argv, &i)))     \
@@ -83,6 +89,7 @@ static int parse_options(int argc, char **argv, bake_options *o)
             fputs(help, stdout);
             fputs(cli_radiosity_help, stdout);
             fputs(cli_hr_help, stdout);
+            fputs(cli_env_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
@@ -131,6 +138,8 @@ static int parse_options(int argc, char **argv, bake_options *o)
 #undef VALUE
     }
     if (cli_require_scene("bake", o->scene) != IL_EXIT_OK)
+        return IL_EXIT_USAGE;
+    if (cli_env_check("bake", &o->env) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
     if (!o->output) {
         cli_error("bake: no output given: -o OUT.ply, OUT.glb or OUT.gltf");
@@ -182,7 +191,7 @@ int cmd_bake(int argc, char **argv)
         return rc;
 
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene(o.scene, o.quiet, &scene)) != IL_EXIT_OK)
+    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
 
     cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);

@@ -18,11 +18,14 @@ static const char *help =
     "atrium, simple-room, shadow-room, box-room, office, cornell-spheres) through\n"
     "its camera and writes the image(s).\n"
     "\n"
-    "  --method pt|radiosity|hr|photon|sppm\n"
+    "  --method pt|radiosity|hr|photon|sppm|ibl|linespace|rsm\n"
     "                         rendering method (pt: path tracing, the default;\n"
     "                         radiosity: progressive radiosity; hr: hierarchical\n"
     "                         radiosity; photon: photon mapping; sppm: stochastic\n"
     "                         progressive photon mapping, one photon pass per spp;\n"
+    "                         ibl: the environment as many directional lights;\n"
+    "                         linespace: light injected into a grid of Linespaces;\n"
+    "                         rsm: reflective shadow maps, one indirect bounce;\n"
     "                         'illum render --method M --help' lists a method's own\n"
     "                         options)\n"
     "  --spp N                samples per pixel (default 16; with --time: at most N)\n"
@@ -40,7 +43,8 @@ static const char *help =
     "  -o, --output FILE      output image, by extension: .exr .hdr .pfm .png; may be\n"
     "                         given more than once (default SCENE-NAME.exr)\n"
     "  --exr-float            write EXR as 32-bit float (default half)\n"
-    "  --exposure EV          PNG only: scale by 2^EV before the sRGB transfer\n"
+    "  --exposure EV          PNG only: scale by 2^EV before the sRGB transfer (or\n"
+    "                         before the tone curve of --tonemap, listed below)\n"
     "  --stats FILE           write render statistics as JSON\n"
     "  --quiet                no progress bar and no warnings\n"
     "\n"
@@ -58,6 +62,7 @@ typedef struct render_options {
     uint32_t width, height;
     il_render_desc desc;
     il_write_desc write;
+    cli_tonemap_options tm;          /* --tonemap and the rest: PNG outputs */
     bool quiet;
     bool has_pos, has_target, has_up, has_fov, has_seed;
     il_vec3 cam_pos, cam_target, cam_up;
@@ -66,6 +71,10 @@ typedef struct render_options {
     cli_radiosity_options rad;
     cli_hr_options hr;
     cli_photon_options photon;
+    cli_ibl_options ibl;
+    cli_rsm_options rsm;
+    cli_linespace_options linespace;
+    cli_env_options env;             /* --env and its settings */
 } render_options;
 
 static volatile sig_atomic_t interrupted = 0;
@@ -85,6 +94,7 @@ static double now_seconds(void)
 typedef struct progress_state {
     bool draw;
     bool drawn;
+    bool lights;                     /* ibl: passes_done counts lights */
 } progress_state;
 
 static bool on_progress(const il_render_progress *p, void *user)
@@ -105,8 +115,9 @@ static bool on_progress(const il_render_progress *p, void *user)
         for (int i = 0; i < 30; i++)
             bar[i] = i < filled ? '#' : '.';
         bar[30] = '\0';
-        fprintf(stderr, "\r[%s] %3d%%  %u spp  %.1fs  ETA %.1fs  %.2f Mrays/s   ", bar,
-                (int)(frac * 100.0), p->passes_done, p->seconds, eta, mrays);
+        fprintf(stderr, "\r[%s] %3d%%  %u %s  %.1fs  ETA %.1fs  %.2f Mrays/s   ", bar,
+                (int)(frac * 100.0), p->passes_done, ps->lights ? "lights" : "spp", p->seconds, eta,
+                mrays);
         fflush(stderr);
         ps->drawn = true;
     }
@@ -198,6 +209,12 @@ static int check_method_options(const render_options *o, bool final)
         return cli_method_mismatch("render", &o->rad.note, "radiosity", "radiosity");
     if (o->hr.note.given && o->desc.method != IL_METHOD_HR)
         return cli_method_mismatch("render", &o->hr.note, "hierarchical radiosity", "hr");
+    if (o->ibl.note.given && o->desc.method != IL_METHOD_IBL)
+        return cli_method_mismatch("render", &o->ibl.note, "many-light environment", "ibl");
+    if (o->linespace.note.given && o->desc.method != IL_METHOD_LINESPACE)
+        return cli_method_mismatch("render", &o->linespace.note, "linespace", "linespace");
+    if (o->rsm.note.given && o->desc.method != IL_METHOD_RSM)
+        return cli_method_mismatch("render", &o->rsm.note, "reflective shadow map", "rsm");
     return cli_photon_check_method("render", &o->photon, o->desc.method);
 }
 
@@ -207,9 +224,18 @@ static int parse_options(int argc, char **argv, render_options *o)
         const char *a = argv[i];
         const char *v = NULL;
         int opt_rc;
-        if (cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
+        if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
+            cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
             cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
-            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc)) {
+            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc) ||
+            cli_ibl_option(argc, argv, &i, &o->ibl, &opt_rc) ||
+            cli_rsm_option(argc, argv, &i, &o->rsm, &opt_rc) ||
+            cli_linespace_option(argc, argv, &i, &o->linespace, &opt_rc)) {
+            if (opt_rc != IL_EXIT_OK)
+                return opt_rc;
+            continue;
+        }
+        if (cli_env_option(argc, argv, &i, &o->env, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -221,18 +247,26 @@ static int parse_options(int argc, char **argv, render_options *o)
     } while (0)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(help, stdout);
+            fputs(cli_tonemap_help, stdout);
+            fputs(cli_env_help, stdout);
             if (cli_help_wants_method(argc, argv, "radiosity"))
                 fputs(cli_radiosity_help, stdout);
             if (cli_help_wants_method(argc, argv, "hr"))
                 fputs(cli_hr_help, stdout);
             if (cli_help_wants_method(argc, argv, "photon") || cli_help_wants_method(argc, argv, "sppm"))
                 fputs(cli_photon_help, stdout);
+            if (cli_help_wants_method(argc, argv, "ibl"))
+                fputs(cli_ibl_help, stdout);
+            if (cli_help_wants_method(argc, argv, "linespace"))
+                fputs(cli_linespace_help, stdout);
+            if (cli_help_wants_method(argc, argv, "rsm"))
+                fputs(cli_rsm_help, stdout);
             return -1;
         } else if (!strcmp(a, "--method")) {
             VALUE();
             if (!cli_method_from_name(v, &o->desc.method)) {
                 cli_error("--method: unknown method '%s' "
-                          "(available: pt, radiosity, hr, photon, sppm)", v);
+                          "(available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)", v);
                 return IL_EXIT_BAD_INPUT;
             }
             o->has_method = true;
@@ -343,6 +377,11 @@ static int parse_options(int argc, char **argv, render_options *o)
     }
     if (cli_require_scene("render", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
+    if (cli_env_check("render", &o->env) != IL_EXIT_OK)
+        return IL_EXIT_USAGE;
+    int tm_rc = cli_tonemap_check("render", &o->tm);
+    if (tm_rc != IL_EXIT_OK)
+        return tm_rc;
     return check_method_options(o, false);
 }
 
@@ -364,7 +403,7 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
         return IL_EXIT_OK;
     il_method method = IL_METHOD_PT;
     if (rs.method[0] && !cli_method_from_name(rs.method, &method)) {
-        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr, photon, sppm)",
+        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)",
                   o->scene, rs.method);
         return IL_EXIT_BAD_INPUT;
     }
@@ -439,6 +478,12 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
         cli_hr_stats_json(j, &rs->hr);
     else if (o->desc.method == IL_METHOD_PHOTON || o->desc.method == IL_METHOD_SPPM)
         cli_photon_stats_json(j, &rs->photon);
+    else if (o->desc.method == IL_METHOD_IBL)
+        cli_ibl_stats_json(j, &o->ibl.desc, &rs->ibl);
+    else if (o->desc.method == IL_METHOD_LINESPACE)
+        cli_linespace_stats_json(j, &rs->linespace);
+    else if (o->desc.method == IL_METHOD_RSM)
+        cli_rsm_stats_json(j, &o->rsm.desc, &rs->rsm);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;
@@ -463,7 +508,7 @@ int cmd_render(int argc, char **argv)
     }
 
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene(o.scene, o.quiet, &scene)) != IL_EXIT_OK)
+    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
     if ((rc = apply_scene_settings(scene, &o)) != IL_EXIT_OK ||
         (rc = check_method_options(&o, true)) != IL_EXIT_OK) {
@@ -497,6 +542,10 @@ int cmd_render(int argc, char **argv)
     }
     o.desc.hr = &o.hr.desc;
     o.desc.photon = &o.photon.desc;
+    o.desc.ibl = &o.ibl.desc;
+    o.desc.rsm = &o.rsm.desc;
+    o.desc.linespace = &o.linespace.desc;
+    ps.lights = o.desc.method == IL_METHOD_IBL;
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
     sigaction(SIGINT, &sa, &old_sa);
@@ -515,6 +564,7 @@ int cmd_render(int argc, char **argv)
     }
 
     il_image img = {0};
+    o.write.tonemap = cli_tonemap_desc(&o.tm, o.write.exposure);
     st = il_film_resolve(film, &img, &err);
     for (int i = 0; st == IL_OK && i < o.num_outputs; i++)
         st = il_image_write(&img, o.outputs[i], &o.write, &err);
@@ -532,6 +582,12 @@ int cmd_render(int argc, char **argv)
             cli_hr_summary(&rs.hr);
         else if (o.desc.method == IL_METHOD_PHOTON || o.desc.method == IL_METHOD_SPPM)
             cli_photon_summary(o.desc.method, &rs.photon);
+        else if (o.desc.method == IL_METHOD_IBL)
+            cli_ibl_summary(&o.ibl.desc, &rs.ibl);
+        else if (o.desc.method == IL_METHOD_LINESPACE)
+            cli_linespace_summary(&rs.linespace);
+        else if (o.desc.method == IL_METHOD_RSM)
+            cli_rsm_summary(&o.rsm.desc, &rs.rsm);
         fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
                 rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);

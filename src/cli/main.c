@@ -16,6 +16,10 @@ static const char *usage =
     "                           vertex radiance\n"
     "  info SCENE               print what a scene contains\n"
     "  compare A B [--diff D]   compare two images (RMSE, relative MSE, luminance)\n"
+    "  envmap convert IN OUT --to latlong|angular|cross\n"
+    "                           resample an environment map into another mapping\n"
+    "  tonemap IN OUT.png [--op linear|gamma|reinhard|filmic] [options]\n"
+    "                           tone-map an HDR image (EXR, HDR, PFM) to a PNG\n"
     "\n"
     "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
     "scene file (docs/scene-format.md) or a built-in name: cornell, atrium,\n"
@@ -42,6 +46,8 @@ int main(int argc, char **argv)
             if (!strcmp(argv[2], "info")) return cmd_info(2, sub);
             if (!strcmp(argv[2], "compare")) return cmd_compare(2, sub);
             if (!strcmp(argv[2], "bake")) return cmd_bake(2, sub);
+            if (!strcmp(argv[2], "envmap")) return cmd_envmap(2, sub);
+            if (!strcmp(argv[2], "tonemap")) return cmd_tonemap(2, sub);
         }
         fputs(usage, stdout);
         return IL_EXIT_OK;
@@ -58,6 +64,10 @@ int main(int argc, char **argv)
         return cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "bake"))
         return cmd_bake(argc - 1, argv + 1);
+    if (!strcmp(cmd, "envmap"))
+        return cmd_envmap(argc - 1, argv + 1);
+    if (!strcmp(cmd, "tonemap"))
+        return cmd_tonemap(argc - 1, argv + 1);
     cli_error("unknown command '%s' (try 'illum --help')", cmd);
     return IL_EXIT_USAGE;
 }

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/tonemap.h"
 
 il_status il_image_check_size(uint64_t width, uint64_t height, const char *path,
                               il_error *err)
@@ -229,7 +230,9 @@ static il_status encode(const il_image *image, image_format fmt, FILE *f, const 
     case FORMAT_EXR: return il_exr_write(image, f, path, desc->exr_precision, err);
     case FORMAT_HDR: return il_hdr_write(image, f, path, err);
     case FORMAT_PFM: return il_pfm_write(image, f, path, err);
-    case FORMAT_PNG: return il_png_write(image, f, path, desc->exposure, err);
+    case FORMAT_PNG:
+        return desc->tonemap ? il_png_write_tonemapped(image, f, path, desc->tonemap, err)
+                             : il_png_write(image, f, path, desc->exposure, err);
     case FORMAT_JPEG:
     case FORMAT_UNKNOWN: break;
     }
@@ -254,6 +257,12 @@ il_status il_image_write(const il_image *image, const char *path, const il_write
     il_write_desc defaults = {0};
     if (!desc)
         desc = &defaults;
+    /* Bad tone-mapping settings fail before any file is created. */
+    if (fmt == FORMAT_PNG && desc->tonemap) {
+        il_status bad = il_tonemap_check(desc->tonemap, err);
+        if (bad != IL_OK)
+            return bad;
+    }
 
     il_atomic_file af;
     il_status st = il_atomic_open(&af, path, err);

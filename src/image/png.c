@@ -8,7 +8,9 @@
  * chunk / marker structure of the whole file is checked first.
  *
  * Writing: PNG, 8-bit RGB: value * 2^exposure, sRGB OETF, clamped to [0,1],
- * rounded to the nearest code; NaN and Inf become 0. */
+ * rounded to the nearest code; NaN and Inf become 0.  With a tone-mapping
+ * desc the codes are round(255 v) of il_tonemap's display values v instead
+ * (tonemap.c; docs/tonemapping.md). */
 #include "image/image_io.h"
 
 #include <limits.h>
@@ -21,6 +23,7 @@
 
 #include "core/error.h"
 #include "image/srgb.h"
+#include "image/tonemap.h"
 
 /* ------------------------------------------------------------ structure */
 
@@ -181,22 +184,10 @@ static void png_sink_write(void *context, void *data, int size)
         s->failed = true;
 }
 
-il_status il_png_write(const il_image *image, FILE *f, const char *path, float exposure,
-                       il_error *err)
+/* Encodes w x h RGB codes; `px` is freed. */
+static il_status png_encode(unsigned char *px, size_t w, size_t h, FILE *f, const char *path,
+                            il_error *err)
 {
-    size_t w = image->width, h = image->height;
-    /* stb_image_write keeps sizes in int. */
-    if ((w * 3 + 1) * h > INT_MAX / 2)
-        return il_fail(err, IL_ERR_INVALID, "%s: image %zux%zu is too large for the PNG writer",
-                       path, w, h);
-    unsigned char *px = il_malloc(w * h * 3, err);
-    if (!px)
-        return IL_ERR_MEMORY;
-    double mult = exposure != 0.0f ? exp2((double)exposure) : 1.0;
-    for (size_t i = 0; i < w * h * 3; i++) {
-        float v = image->rgb[i];
-        px[i] = isfinite(v) ? il_linear_to_srgb8(v * mult) : 0;
-    }
     png_sink sink = {f, false};
     int ok = stbi_write_png_to_func(png_sink_write, &sink, (int)w, (int)h, 3, px, (int)(w * 3));
     free(px);
@@ -205,4 +196,51 @@ il_status il_png_write(const il_image *image, FILE *f, const char *path, float e
     if (sink.failed)
         return il_fail(err, IL_ERR_IO, "%s: cannot write", path);
     return IL_OK;
+}
+
+/* stb_image_write keeps sizes in int. */
+static il_status png_check_size(const il_image *image, const char *path, il_error *err)
+{
+    size_t w = image->width, h = image->height;
+    if ((w * 3 + 1) * h > INT_MAX / 2)
+        return il_fail(err, IL_ERR_INVALID, "%s: image %zux%zu is too large for the PNG writer",
+                       path, w, h);
+    return IL_OK;
+}
+
+il_status il_png_write(const il_image *image, FILE *f, const char *path, float exposure,
+                       il_error *err)
+{
+    size_t w = image->width, h = image->height;
+    il_status st = png_check_size(image, path, err);
+    if (st != IL_OK)
+        return st;
+    unsigned char *px = il_malloc(w * h * 3, err);
+    if (!px)
+        return IL_ERR_MEMORY;
+    double mult = exposure != 0.0f ? exp2((double)exposure) : 1.0;
+    for (size_t i = 0; i < w * h * 3; i++) {
+        float v = image->rgb[i];
+        px[i] = isfinite(v) ? il_linear_to_srgb8(v * mult) : 0;
+    }
+    return png_encode(px, w, h, f, path, err);
+}
+
+il_status il_png_write_tonemapped(const il_image *image, FILE *f, const char *path,
+                                  const il_tonemap_desc *desc, il_error *err)
+{
+    size_t w = image->width, h = image->height;
+    il_status st = png_check_size(image, path, err);
+    if (st != IL_OK)
+        return st;
+    il_tonemap_plan plan;
+    if ((st = il_tonemap_plan_make(image, desc, &plan, err)) != IL_OK)
+        return st;
+    unsigned char *px = il_malloc(w * h * 3, err);
+    if (px)
+        il_tonemap_run(&plan, NULL, px);
+    il_tonemap_plan_free(&plan);
+    if (!px)
+        return IL_ERR_MEMORY;
+    return png_encode(px, w, h, f, path, err);
 }

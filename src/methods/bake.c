@@ -32,6 +32,10 @@ static const char *method_name(il_method m)
         return "sppm";
     case IL_METHOD_IBL:
         return "ibl";
+    case IL_METHOD_LINESPACE:
+        return "linespace";
+    case IL_METHOD_RSM:
+        return "rsm";
     }
     return NULL;
 }

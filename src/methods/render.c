@@ -5,9 +5,12 @@
 #include "core/error.h"
 #include "illum/illum.h"
 #include "methods/hr/hr.h"
+#include "methods/ibl/ibl.h"
+#include "methods/linespace/ls.h"
 #include "methods/photon/pm.h"
 #include "methods/pt/pt.h"
 #include "methods/radiosity/rad.h"
+#include "methods/rsm/rsm.h"
 #include "scene/scene.h"
 
 /* Limits beyond which an option is certainly a mistake (a typo, a negative
@@ -31,7 +34,7 @@ static il_status validate(const il_scene *scene, const il_film *film, const il_r
                        "render: the scene is not committed (call il_scene_commit first)");
     if (il_film_width(film) == 0 || il_film_height(film) == 0)
         return il_fail(err, IL_ERR_INVALID, "render: the film has no pixels");
-    if ((unsigned)d->method > IL_METHOD_SPPM)
+    if ((unsigned)d->method > IL_METHOD_RSM)
         return il_fail(err, IL_ERR_INVALID, "render: unknown method %d", (int)d->method);
     if (d->spp > IL_MAX_SPP)
         return il_fail(err, IL_ERR_INVALID, "render: spp %u is out of range (1 to %u; 0 means the default)",
@@ -52,6 +55,18 @@ static il_status validate(const il_scene *scene, const il_film *film, const il_r
         return il_fail(err, IL_ERR_INVALID, "render: unknown sampler %d", (int)d->sampler);
     if ((unsigned)d->filter > IL_FILTER_GAUSSIAN)
         return il_fail(err, IL_ERR_INVALID, "render: unknown filter %d", (int)d->filter);
+    if (d->method == IL_METHOD_IBL) {
+        il_ibl_settings unused;
+        return il_ibl_settings_resolve(d->ibl, d, &unused, err);
+    }
+    if (d->method == IL_METHOD_LINESPACE) {
+        il_ls_settings unused;
+        return il_ls_settings_resolve(d->linespace, d->max_depth, &unused, err);
+    }
+    if (d->method == IL_METHOD_RSM) {
+        il_rsm_settings unused;
+        return il_rsm_settings_resolve(d->rsm, d, &unused, err);
+    }
     return IL_OK;
 }
 
@@ -72,6 +87,12 @@ il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *
         return il_pm_render(scene, film, desc, stats, err);
     case IL_METHOD_SPPM:
         return il_sppm_render(scene, film, desc, stats, err);
+    case IL_METHOD_IBL:
+        return il_ibl_render(scene, film, desc, stats, err);
+    case IL_METHOD_LINESPACE:
+        return il_ls_render(scene, film, desc, stats, err);
+    case IL_METHOD_RSM:
+        return il_rsm_render(scene, film, desc, stats, err);
     case IL_METHOD_PT:
     default:
         return il_pt_render(scene, film, desc, IL_PT_MIS, stats, err);

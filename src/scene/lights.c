@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/sampling.h"
+#include "image/envmap.h"
 
 /* Total emitted power of each kind, as luminance (pbrt-v4 Light::Phi). */
 
@@ -41,7 +42,10 @@ static float power_area(il_vec3 radiance, float area, bool two_sided)
 }
 
 /* Uniform environment of radiance L around a scene of radius R:
- * Phi = 4 pi * pi R^2 * L (pbrt-v4 12.5.1, UniformInfiniteLight::Phi). */
+ * Phi = 4 pi * pi R^2 * L (pbrt-v4 12.5.1, UniformInfiniteLight::Phi).  A
+ * map gives pi R^2 * int L dOmega = 4 pi * pi R^2 * mean(L) (pbrt-v4 12.5.2,
+ * ImageInfiniteLight::Phi), so it is called with the map's mean radiance
+ * over the sphere (envmap_sample.c). */
 static float power_environment(il_vec3 radiance, float radius)
 {
     return 4.0f * IL_PI * IL_PI * radius * radius * il_luminance(radiance);
@@ -167,7 +171,8 @@ il_status il_lights_build(il_scene *s, il_error *err)
         memset(&l, 0, sizeof l);
         l.kind = IL_LIGHTK_ENVIRONMENT;
         l.mesh = l.prim = IL_NO_LIGHT;
-        l.radiance = s->environment.radiance;
+        /* A constant sky's radiance, or a map's mean (il_scene_set_environment). */
+        l.radiance = s->envmap ? s->envmap->dist.mean : s->environment.radiance;
         l.power = power_environment(l.radiance, s->scene_radius);
         s->environment_light = count;
         s->lights[count++] = l;
@@ -222,8 +227,11 @@ il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w)
 
 il_vec3 il_environment_radiance(const il_scene *s, il_vec3 dir)
 {
-    (void)dir; /* a constant sky for now; environment maps will look dir up */
-    return s->has_environment ? s->environment.radiance : v3s(0.0f);
+    if (!s->has_environment)
+        return v3s(0.0f);
+    if (s->envmap)
+        return il_envmap_eval(s->envmap, dir);
+    return s->environment.radiance;
 }
 
 /* Converts the area density 1/A of a uniform point on a triangle to solid
@@ -339,6 +347,9 @@ float il_light_pdf_environment(const il_scene *s, il_vec3 dir)
 
 il_vec3 il_environment_sample(const il_scene *s, il_vec2 u, il_vec3 *dir, float *pdf)
 {
+    /* A map: its importance-sampling tables (image/envmap_sample.c). */
+    if (s->envmap && s->has_environment)
+        return il_envmap_sample(s->envmap, u, dir, pdf);
     /* A constant sky: uniform over the sphere of directions (pbrt-v4 12.5.1). */
     *dir = il_sample_uniform_sphere(u);
     *pdf = s->has_environment ? IL_INV_4PI : 0.0f;
@@ -347,6 +358,9 @@ il_vec3 il_environment_sample(const il_scene *s, il_vec2 u, il_vec3 *dir, float 
 
 float il_environment_pdf(const il_scene *s, il_vec3 dir)
 {
-    (void)dir;
-    return s->has_environment ? IL_INV_4PI : 0.0f;
+    if (!s->has_environment)
+        return 0.0f;
+    if (s->envmap)
+        return il_envmap_pdf(s->envmap, dir);
+    return IL_INV_4PI;
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "image/envmap.h"
 #include "scene/loader.h"
 #include "scene/scene.h"
 #include "scene/xform.h"
@@ -701,18 +702,50 @@ static il_status parse_camera(jctx *c, const cJSON *cam)
     return IL_OK;
 }
 
+/* "environment": a constant "radiance", or a "map" (an image file relative
+ * to the JSON file) with its "mapping" (default: from the image's shape,
+ * image/envmap.h), "rotation" in degrees and "intensity"
+ * (docs/environment.md). */
 static il_status parse_environment(jctx *c, const cJSON *env)
 {
-    static const char *const keys[] = {"radiance", NULL};
+    static const char *const keys[] = {"radiance", "map", "mapping", "rotation", "intensity", NULL};
     il_status s = expect_object(c, env, "environment");
     if (s != IL_OK)
         return s;
     check_keys(c, env, "environment", keys);
     il_environment_desc d = {0};
-    if ((s = get_colour(c, env, "radiance", "environment", &d.radiance)) != IL_OK)
+    const char *map = NULL, *mapping = NULL;
+    double rotation = 0.0, intensity = 0.0;
+    bool has_rotation, has_intensity;
+    if ((s = get_colour(c, env, "radiance", "environment", &d.radiance)) != IL_OK ||
+        (s = get_string(c, env, "map", "environment", &map)) != IL_OK ||
+        (s = get_string(c, env, "mapping", "environment", &mapping)) != IL_OK ||
+        (s = get_number(c, env, "rotation", "environment", &rotation, &has_rotation)) != IL_OK ||
+        (s = get_number(c, env, "intensity", "environment", &intensity, &has_intensity)) != IL_OK)
         return s;
-    if ((s = il_scene_set_environment(c->scene, &d, c->err)) != IL_OK)
-        return il_load_prefix_error(c->err, s, c->path, NULL);
+    if (!map && (mapping || has_rotation || has_intensity))
+        return bad(c, "environment", "\"mapping\", \"rotation\" and \"intensity\" need a \"map\"");
+    if (mapping && !il_envmap_mapping_from_name(mapping, &d.mapping))
+        return bad(c, "environment.mapping", "expected \"latlong\", \"angular\" or \"cross\"");
+    if (has_intensity && !(intensity > 0.0))
+        return bad(c, "environment.intensity", "expected a number > 0");
+    il_image img = {0};
+    if (map) {
+        char full[2048];
+        if ((s = resolve_path(c, "environment.map", map, full, sizeof full)) != IL_OK)
+            return s;
+        if ((s = il_image_read(full, &img, c->err)) != IL_OK)
+            return il_load_prefix_error(c->err, s, c->path, "environment.map");
+        if (!mapping)
+            d.mapping = il_envmap_mapping_for_size(img.width, img.height);
+        d.map = &img;
+        d.rotation = (float)rotation;
+        d.intensity = (float)intensity;
+    }
+    s = il_scene_set_environment(c->scene, &d, c->err);
+    il_image_free(&img);
+    if (s != IL_OK)
+        return il_load_prefix_error(c->err, s, c->path, map ? "environment.map" : NULL);
     return IL_OK;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "image/envmap.h"
 #include "scene/lights.h"
 #include "trace/trace.h"
 
@@ -282,14 +283,53 @@ bool il_scene_get_camera(const il_scene *s, il_camera_desc *out)
     return true;
 }
 
+static void free_envmap(il_scene *s)
+{
+    if (s->envmap) {
+        il_envmap_free(s->envmap);
+        free(s->envmap);
+        s->envmap = NULL;
+    }
+}
+
+/* A map is copied (times its intensity) and its sampling tables are built
+ * here, so that commit and rendering find them ready (image/envmap.h). */
 il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il_error *err)
 {
     if (s->committed)
         return il_fail(err, IL_ERR_INVALID, "the scene is committed and can no longer change");
+    if (!d)
+        return il_fail(err, IL_ERR_INVALID, "environment: no description given");
     if (!vec_finite_nonneg(d->radiance))
         return il_fail(err, IL_ERR_INVALID, "environment: radiance must be finite and >= 0");
+    if (!d->map) {
+        free_envmap(s);
+        s->environment = *d;
+        s->has_environment = !v3_is_zero(d->radiance);
+        return IL_OK;
+    }
+    if ((unsigned)d->mapping > IL_ENV_CROSS)
+        return il_fail(err, IL_ERR_INVALID, "environment: unknown mapping %d", (int)d->mapping);
+    il_envmap *env = il_calloc(1, sizeof *env, err);
+    if (!env)
+        return IL_ERR_MEMORY;
+    uint64_t clamped = 0;
+    il_status st = il_envmap_init(env, d->map, d->mapping, d->rotation, d->intensity, &clamped, err);
+    if (st != IL_OK) {
+        free(env);
+        return st;
+    }
+    free_envmap(s);
+    s->envmap = env;
     s->environment = *d;
-    s->has_environment = !v3_is_zero(d->radiance);
+    s->environment.map = NULL;
+    s->environment.radiance = env->dist.mean;
+    s->has_environment = !v3_is_zero(env->dist.mean);
+    if (clamped)
+        il_scene_warn(s, "environment map: %llu negative texel values set to 0",
+                      (unsigned long long)clamped);
+    if (!s->has_environment)
+        il_scene_warn(s, "environment map: every texel is black; the map gives no light");
     return IL_OK;
 }
 
@@ -451,6 +491,7 @@ void il_scene_release(il_scene *s)
         free(s->textures[i].rgb);
     free(s->textures);
     free(s->user_lights);
+    free_envmap(s);
     for (uint32_t i = 0; i < s->num_warnings; i++)
         free(s->warnings[i]);
     free(s->warnings);

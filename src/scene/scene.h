@@ -13,6 +13,7 @@
 #define IL_NO_LIGHT UINT32_MAX
 
 typedef struct il_tracer il_tracer;
+typedef struct il_envmap il_envmap;
 
 /* Per-triangle geometry that il_scene_commit precomputes for the surface
  * queries (il_scene_surface, il_scene_point): the three corners and their
@@ -92,8 +93,11 @@ struct il_scene {
     il_texture *textures;   uint32_t num_textures, cap_textures;
     il_light_desc *user_lights; uint32_t num_user_lights, cap_user_lights;
     il_scene_camera camera;
-    il_environment_desc environment;
-    bool has_environment;
+    il_environment_desc environment; /* as given, but map is NULL (the map lives in envmap)
+                                        and, with a map, radiance is its mean radiance */
+    il_envmap *envmap;      /* the environment map with its sampling tables (image/envmap.h);
+                               NULL for a constant sky */
+    bool has_environment;   /* a constant sky of nonzero radiance, or a map with some light */
 
     char **warnings;        uint32_t num_warnings, cap_warnings;
     uint64_t dropped_triangles;

@@ -139,17 +139,32 @@ bool il_pm_emit(const il_scene *s, const float u[IL_PM_EMIT_DIMS], il_pm_emissio
         break;
     }
     case IL_LIGHTK_ENVIRONMENT: {
-        /* Arriving from a uniform direction w (pdf 1/(4 pi), as
-         * il_light_pdf_environment) through a disk of radius R facing it
+        /* Arriving from a direction w through a disk of radius R facing it
          * outside the bounding sphere (pdf 1/(pi R^2)): power
-         * L 4 pi pi R^2, lights.c's power_environment (pbrt-v4 12.5.1,
-         * UniformInfiniteLight::SampleLe). */
+         * L(w) pi R^2 / pdf(w) (pbrt-v4 12.5.1-2, UniformInfiniteLight and
+         * ImageInfiniteLight::SampleLe).  A constant sky: w uniform, pdf
+         * 1/(4 pi), so every photon carries L 4 pi pi R^2, lights.c's
+         * power_environment.  A map: w drawn from its importance tables
+         * (il_environment_sample), so photons go where its light is and
+         * carry nearly equal power. */
         float r = s->scene_radius;
-        il_vec3 w = il_sample_uniform_sphere(u_dir);
+        il_vec3 w, L;
+        float scale;
+        if (s->envmap) {
+            float pdf;
+            L = il_environment_sample(s, u_dir, &w, &pdf);
+            if (!(pdf > 0.0f))
+                return false;
+            scale = IL_PI * r * r * inv_pmf / pdf;
+        } else {
+            w = il_sample_uniform_sphere(u_dir);
+            L = il_environment_radiance(s, w);
+            scale = 4.0f * IL_PI * IL_PI * r * r * inv_pmf;
+        }
         il_vec3 c = v3_fma(s->scene_center, w, r);
         out->p = out->org = disk_point(c, w, r, u_pos);
         out->dir = v3_neg(w);
-        out->power = v3_scale(il_environment_radiance(s, w), 4.0f * IL_PI * IL_PI * r * r * inv_pmf);
+        out->power = v3_scale(L, scale);
         break;
     }
     default:

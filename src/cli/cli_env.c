@@ -1,0 +1,96 @@
+/* The environment-map options shared by render and bake (docs/environment.md):
+ * --env FILE, --env-mapping, --env-intensity, --env-rotate.  The map is set
+ * on the scene after loading and before commit (cli_load_scene_env). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "image/envmap.h"
+
+const char cli_env_help[] =
+    "\n"
+    "environment map (every method):\n"
+    "  --env FILE             light the scene by an environment map (.hdr .exr .pfm);\n"
+    "                         it replaces the scene's own sky\n"
+    "  --env-mapping latlong|angular|cross\n"
+    "                         how FILE covers the sphere (default: from its shape,\n"
+    "                         1:1 angular, 3:4 cross, else latlong)\n"
+    "  --env-intensity K      multiply the map's radiance by K (default 1)\n"
+    "  --env-rotate DEGREES   turn the map about +y, counter-clockwise seen from\n"
+    "                         above (default 0)\n";
+
+bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
+{
+    const char *a = argv[*i];
+    if (strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
+        strcmp(a, "--env-rotate"))
+        return false;
+    *rc = IL_EXIT_OK;
+    const char *v = cli_value(argc, argv, i);
+    if (!v) {
+        *rc = IL_EXIT_USAGE;
+        return true;
+    }
+    if (!strcmp(a, "--env")) {
+        o->file = v;
+        return true;
+    }
+    if (!o->first_setting)
+        o->first_setting = a;
+    if (!strcmp(a, "--env-mapping")) {
+        if (!il_envmap_mapping_from_name(v, &o->mapping)) {
+            cli_error("--env-mapping: expected latlong, angular or cross, got '%s'", v);
+            *rc = IL_EXIT_BAD_INPUT;
+        }
+        o->has_mapping = true;
+    } else if (!strcmp(a, "--env-intensity")) {
+        double k = -1.0;
+        if (!cli_parse_double(a, v, 0.0, 1e12, &k)) {
+            *rc = IL_EXIT_BAD_INPUT;
+        } else if (!(k > 0.0)) {
+            cli_error("--env-intensity: must be more than 0, got '%s'", v);
+            *rc = IL_EXIT_BAD_INPUT;
+        }
+        o->intensity = k;
+    } else {
+        if (!cli_parse_double(a, v, -1e6, 1e6, &o->rotation))
+            *rc = IL_EXIT_BAD_INPUT;
+    }
+    return true;
+}
+
+int cli_env_check(const char *command, const cli_env_options *o)
+{
+    if (o->first_setting && !o->file) {
+        cli_error("%s: %s needs --env FILE (see 'illum %s --help')", command, o->first_setting, command);
+        return IL_EXIT_USAGE;
+    }
+    return IL_EXIT_OK;
+}
+
+int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
+{
+    if (!o || !o->file)
+        return IL_EXIT_OK;
+    il_error err = {0};
+    il_image img = {0};
+    il_status st = il_image_read(o->file, &img, &err);
+    if (st != IL_OK) {
+        cli_error("--env: %s", err.message);
+        return cli_exit_for(st);
+    }
+    il_env_mapping m = o->has_mapping ? o->mapping : il_envmap_mapping_for_size(img.width, img.height);
+    if (!o->has_mapping && m == IL_ENV_LATLONG && img.width != 2 * img.height && !quiet)
+        fprintf(stderr,
+                "illum: warning: %s is %ux%u, not 2:1: taken as a lat-long map (see --env-mapping)\n",
+                o->file, img.width, img.height);
+    il_environment_desc d = {.map = &img, .mapping = m, .rotation = (float)o->rotation,
+                             .intensity = (float)o->intensity};
+    st = il_scene_set_environment(scene, &d, &err);
+    il_image_free(&img);
+    if (st != IL_OK) {
+        cli_error("%s: %s", o->file, err.message);
+        return cli_exit_for(st);
+    }
+    return IL_EXIT_OK;
+}

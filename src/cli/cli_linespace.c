@@ -1,0 +1,146 @@
+/* The Linespace options of `illum render --method linespace`: parsing into
+ * an il_linespace_desc, their help text, the "linespace" object of --stats
+ * JSON and the summary line (docs/linespace.md lists every option). */
+#include <stdio.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "cli/cli.h"
+
+const char cli_linespace_help[] =
+    "linespace options (--method linespace; docs/linespace.md):\n"
+    "  --grid N               voxels along the scene's longest side, 1 to 256\n"
+    "                         (default 8)\n"
+    "  --linespace-n N        patches per voxel face side; 15 N^4 shafts per voxel,\n"
+    "                         1 to 8 (default 4)\n"
+    "  --inject-rays N        light paths injected, 1 to 10^10 (default 1000000)\n"
+    "  --inject-depth N       bounces a light path takes, 1 to 1024 (default\n"
+    "                         max-depth - 1)\n"
+    "  --blur R               jitter the lookup point on a disk of radius R voxel\n"
+    "                         sides, 0 to 4 (default 0: none)\n"
+    "  --occlusion-test on|off  test the shaft's triangles between the point and\n"
+    "                         the voxel's face (default on)\n"
+    "  --fallback on|off      an empty or occluded shaft traces on (default on) or\n"
+    "                         gives no light (off)\n"
+    "  --solid-angle on|off   normalise each shaft by its own measure (default on)\n"
+    "                         or as if all shafts were equal (off: the thesis)\n"
+    "  --glossy-n1 E          Phong exponents below E read the Linespace (default 10)\n"
+    "  --glossy-n2 E          Phong exponents above E trace on, blend between\n"
+    "                         (default 100); both 0.001 to 10^6\n";
+
+static const char *const names[] = {"--grid", "--linespace-n", "--inject-rays", "--inject-depth",
+                                    "--blur", "--occlusion-test", "--fallback", "--solid-angle",
+                                    "--glossy-n1", "--glossy-n2"};
+#define COUNT(a) (sizeof a / sizeof a[0])
+
+static bool parse_onoff(const char *name, const char *v, bool *off)
+{
+    if (!strcmp(v, "on"))
+        *off = false;
+    else if (!strcmp(v, "off"))
+        *off = true;
+    else {
+        cli_error("%s: '%s' is neither on nor off", name, v);
+        return false;
+    }
+    return true;
+}
+
+static bool parse_value(const char *name, const char *v, il_linespace_desc *d)
+{
+    double x = 0.0;
+    bool ok;
+    if (!strcmp(name, "--grid"))
+        return cli_parse_u32(name, v, 1, 256, &d->grid);
+    if (!strcmp(name, "--linespace-n"))
+        return cli_parse_u32(name, v, 1, 8, &d->n);
+    if (!strcmp(name, "--inject-depth"))
+        return cli_parse_u32(name, v, 1, 1024, &d->inject_depth);
+    if (!strcmp(name, "--inject-rays")) {
+        uint64_t n = 0;
+        if (!cli_parse_u64(name, v, &n))
+            return false;
+        if (n < 1 || n > 10000000000ull) {
+            cli_error("%s: %s is out of range (1 to 10^10)", name, v);
+            return false;
+        }
+        d->inject_rays = n;
+        return true;
+    }
+    if (!strcmp(name, "--blur")) {
+        ok = cli_parse_double(name, v, 0.0, 4.0, &x);
+        d->blur = (float)x;
+        return ok;
+    }
+    if (!strcmp(name, "--occlusion-test"))
+        return parse_onoff(name, v, &d->no_occlusion_test);
+    if (!strcmp(name, "--fallback"))
+        return parse_onoff(name, v, &d->no_fallback);
+    if (!strcmp(name, "--solid-angle"))
+        return parse_onoff(name, v, &d->no_solid_angle);
+    ok = cli_parse_double(name, v, 0.001, 1e6, &x);
+    if (!strcmp(name, "--glossy-n1"))
+        d->glossy_n1 = (float)x;
+    else
+        d->glossy_n2 = (float)x;
+    return ok;
+}
+
+bool cli_linespace_option(int argc, char **argv, int *i, cli_linespace_options *o, int *rc)
+{
+    const char *v = NULL;
+    const char *name = cli_method_option(argc, argv, i, names, COUNT(names), &o->note, &v);
+    if (!name)
+        return false;
+    if (!v) {
+        *rc = IL_EXIT_USAGE;
+        return true;
+    }
+    *rc = parse_value(name, v, &o->desc) ? IL_EXIT_OK : IL_EXIT_BAD_INPUT;
+    if (*rc == IL_EXIT_OK) {
+        float n1 = o->desc.glossy_n1 > 0.0f ? o->desc.glossy_n1 : 10.0f;
+        float n2 = o->desc.glossy_n2 > 0.0f ? o->desc.glossy_n2 : 100.0f;
+        if ((!strcmp(name, "--glossy-n1") || !strcmp(name, "--glossy-n2")) && o->desc.glossy_n1 > 0.0f &&
+            o->desc.glossy_n2 > 0.0f && n2 < n1) {
+            cli_error("%s: --glossy-n2 (%g) is below --glossy-n1 (%g)", name, (double)n2, (double)n1);
+            *rc = IL_EXIT_BAD_INPUT;
+        }
+    }
+    return true;
+}
+
+void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
+{
+    cJSON *r = cJSON_AddObjectToObject(parent, "linespace");
+    cJSON *g = cJSON_AddArrayToObject(r, "grid");
+    for (int k = 0; k < 3; k++)
+        cJSON_AddItemToArray(g, cJSON_CreateNumber(s->grid[k]));
+    cJSON_AddNumberToObject(r, "n", s->n);
+    cJSON_AddNumberToObject(r, "voxels", (double)s->voxels);
+    cJSON_AddNumberToObject(r, "shafts", (double)s->shafts);
+    cJSON_AddNumberToObject(r, "candidates", (double)s->candidates);
+    cJSON_AddNumberToObject(r, "overflow_shafts", (double)s->overflow_shafts);
+    cJSON_AddNumberToObject(r, "memory_bytes", (double)s->memory_bytes);
+    cJSON_AddNumberToObject(r, "inject_rays", (double)s->inject_rays);
+    cJSON_AddNumberToObject(r, "injected_segments", (double)s->injected_segments);
+    cJSON_AddNumberToObject(r, "lookups", (double)s->lookups);
+    cJSON_AddNumberToObject(r, "lookup_hits", (double)s->lookup_hits);
+    cJSON_AddNumberToObject(r, "lookup_empty", (double)s->lookup_empty);
+    cJSON_AddNumberToObject(r, "lookup_occluded", (double)s->lookup_occluded);
+    cJSON_AddNumberToObject(r, "seconds_build", s->seconds_build);
+    cJSON_AddNumberToObject(r, "seconds_inject", s->seconds_inject);
+    cJSON_AddNumberToObject(r, "seconds_sample", s->seconds_sample);
+}
+
+void cli_linespace_summary(const il_linespace_stats *s)
+{
+    double hit = s->lookups ? 100.0 * (double)s->lookup_hits / (double)s->lookups : 0.0;
+    fprintf(stderr,
+            "illum: linespace: grid %ux%ux%u, N %u, %llu voxels, %llu shafts, %.1f MB; %llu paths "
+            "injected; %.1f%% of lookups found light (build %.2f s, inject %.2f s, sample %.2f s)\n",
+            s->grid[0], s->grid[1], s->grid[2], s->n, (unsigned long long)s->voxels,
+            (unsigned long long)s->shafts, (double)s->memory_bytes / (1024.0 * 1024.0),
+            (unsigned long long)s->inject_rays, hit, s->seconds_build, s->seconds_inject,
+            s->seconds_sample);
+}

@@ -1,0 +1,190 @@
+/* Linespace light injection (`--method linespace`): Nilles 2017, "Light-
+ * Injection und Global Illumination mittels GPU und der Linespace
+ * Datenstruktur", on the Linespace of Keul, Lemke & Mueller 2016
+ * ("Accelerating spatial data structures in ray tracing through
+ * precomputed line space visibility").  docs/linespace.md explains the
+ * estimator, its units and the fixes made to the thesis.
+ *
+ * Private to this folder and its tests. */
+#ifndef IL_METHODS_LS_H
+#define IL_METHODS_LS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/vec.h"
+#include "illum/illum.h"
+#include "scene/scene.h"
+
+/* ------------------------------------------------------------ settings */
+
+/* Renders into the film (cleared first): builds the grid, injects, then
+ * the sampling pass.  `desc` is validated by il_render. */
+il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                       il_render_stats *stats, il_error *err);
+
+#define IL_LS_MAX_N 8u
+#define IL_LS_MAX_GRID 256u
+
+typedef struct il_ls_settings {
+    uint32_t grid;          /* voxels along the longest side */
+    uint32_t n;             /* patches per face side */
+    uint64_t inject_rays;
+    uint32_t inject_depth;  /* bounces of a light path (segments after the first hit) */
+    float blur;             /* fraction of the smallest voxel side */
+    bool occlusion_test, fallback, solid_angle;
+    float n1, n2;           /* glossy thresholds on the Phong exponent */
+    uint32_t max_depth;     /* of the camera paths */
+} il_ls_settings;
+
+il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth, il_ls_settings *out,
+                                 il_error *err);
+
+/* ----------------------------------------------------- shaft indexing */
+
+/* Faces of a voxel: 0 -x, 1 +x, 2 -y, 3 +y, 4 -z, 5 +z (face f lies on axis
+ * f/2, on the high side when f is odd).  A patch of face f is (i, j) on the
+ * face's two other axes in increasing order, index i*N + j.  A shaft is an
+ * unordered pair of patches on different faces: C(6N^2, 2) - 6 C(N^2, 2) =
+ * 15 N^4 of them (Keul et al. 2016, sec. 3), numbered by face pair (15
+ * pairs fa < fb in lexicographic order), then patch on fa, then patch on fb. */
+static inline uint32_t il_ls_num_shafts(uint32_t n) { return 15u * n * n * n * n; }
+
+/* The index of the face pair fa < fb among the 15. */
+uint32_t il_ls_face_pair(uint32_t fa, uint32_t fb);
+
+/* The shaft joining patch pa of face fa and patch pb of face fb (fa != fb,
+ * either order); *dir is 0 when light travels from the lower face to the
+ * higher one, 1 the other way, when (fa, pa) is where it enters. */
+uint32_t il_ls_shaft_index(uint32_t n, uint32_t fa, uint32_t pa, uint32_t fb, uint32_t pb,
+                           uint32_t *dir);
+/* The inverse: the two faces (fa < fb) and their patches. */
+void il_ls_shaft_patches(uint32_t n, uint32_t shaft, uint32_t *fa, uint32_t *pa, uint32_t *fb,
+                         uint32_t *pb);
+
+/* The line through p (inside or on the box [lo, lo+size]) travelling along
+ * d: the face and patch where it enters the box and where it leaves, by the
+ * slab method (Kay & Kajiya 1986).  Also the distances from p, t_in <= 0 <=
+ * t_out.  False for a zero direction. */
+bool il_ls_locate(il_vec3 lo, il_vec3 size, uint32_t n, il_vec3 p, il_vec3 d, uint32_t *face_in,
+                  uint32_t *patch_in, uint32_t *face_out, uint32_t *patch_out, float *t_in,
+                  float *t_out);
+
+/* The four corners of patch `patch` of face f of the box. */
+void il_ls_patch_corners(il_vec3 lo, il_vec3 size, uint32_t n, uint32_t face, uint32_t patch,
+                         il_vec3 corners[4]);
+
+/* Of every shaft of a box of the given size: the measure of the (point,
+ * direction) pairs inside the box whose line runs through it in one
+ * direction, M = int_A int_B cos(a) cos(b) / r dA dB (the chord length r
+ * times the throughput cos cos / r^2 dA dB, Sbert 1996 / Santalo's line
+ * measure), by the midpoint rule on k x k points per patch.  The measures
+ * of all shafts add up to 2 pi V (every point, half the directions): the
+ * table is scaled to that sum, and the quadrature's own sum, before that
+ * scaling, is returned for the tests. */
+double il_ls_shaft_measures(il_vec3 size, uint32_t n, uint32_t k, float *out);
+
+/* ----------------------------------------------------- the structure */
+
+/* One injection entry: radiance (W m^-2 sr^-1) once finished, and how many
+ * segment deposits it holds. */
+typedef struct il_ls_entry {
+    float rgb[3];
+    uint32_t count;
+} il_ls_entry;
+
+/* Candidate lists hold voxel-local triangle numbers; a shaft with more
+ * candidates than IL_LS_MAX_CAND, or a voxel with more than IL_LS_DENSE
+ * triangles, gets the single entry IL_LS_OVERFLOW: its occlusion test casts
+ * a ray clipped to the voxel through the scene's BVH instead. */
+#define IL_LS_MAX_CAND 16u
+#define IL_LS_DENSE 96u
+#define IL_LS_OVERFLOW 0xffffu
+
+typedef struct il_linespace {
+    il_vec3 lo, hi;              /* the grid's box */
+    il_vec3 vsize;               /* one voxel */
+    il_vec3 inv_vsize;           /* 1 / vsize per axis */
+    uint32_t res[3];
+    uint32_t n, num_shafts, mask_words;
+    int32_t *cell;               /* res[0]*res[1]*res[2]: Linespace index or -1 */
+    uint32_t num_voxels;         /* Linespaces (non-empty voxels) */
+    uint32_t *voxel_cell;        /* the cell of each Linespace */
+    uint64_t *mask;              /* num_voxels * mask_words: shafts stored */
+    uint32_t *rank;              /* num_voxels * mask_words: stored shafts before each word */
+    uint64_t *first_shaft;       /* num_voxels + 1: prefix sums of stored shafts */
+    il_ls_entry *entries;        /* 2 per stored shaft (direction 0, 1) */
+    uint64_t *cand_base;         /* num_voxels + 1: prefix sums into cand */
+    uint32_t *cand_end;          /* per stored shaft: end of its list, from its
+                                    voxel's cand_base (the start is the previous
+                                    shaft's end, 0 for a voxel's first) */
+    uint16_t *cand;              /* voxel-local triangle numbers */
+    uint64_t *first_tri;         /* num_voxels + 1: prefix sums into tri */
+    uint32_t *tri_mesh, *tri_prim; /* the triangles overlapping each voxel */
+    float *measure;              /* num_shafts: il_ls_shaft_measures of a voxel */
+    uint64_t num_stored, num_cand, num_overflow;
+} il_linespace;
+
+/* Builds the grid over the scene's bounds, bins the triangles into the
+ * voxels and, in every non-empty voxel, keeps the shafts whose convex hull
+ * the voxel's triangles may touch with their candidate lists. */
+il_status il_ls_build(const il_scene *scene, const il_ls_settings *s, int threads, il_linespace *ls,
+                      il_error *err);
+void il_ls_free(il_linespace *ls);
+uint64_t il_ls_memory(const il_linespace *ls);
+
+/* The cell holding p (clamped to the grid); false outside the grid box. */
+bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3]);
+/* The stored-shaft number of (voxel, shaft), or -1 when not stored. */
+int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft);
+/* The box of cell c. */
+void il_ls_cell_box(const il_linespace *ls, const uint32_t c[3], il_vec3 *lo);
+
+/* ----------------------------------------------------- light emission */
+
+typedef struct il_ls_emission {
+    il_vec3 org, dir;
+    il_vec3 power;          /* W: the light's power over its selection probability */
+    uint32_t light;
+} il_ls_emission;
+#define IL_LS_EMIT_DIMS 5
+/* A light chosen by power, a point and a direction on it (as pm_emit.c). */
+bool il_ls_emit(const il_scene *scene, const float u[IL_LS_EMIT_DIMS], il_ls_emission *out);
+
+/* ----------------------------------------------------- injection */
+
+typedef struct il_ls_inject_result {
+    uint64_t deposits;
+    uint64_t rays;
+} il_ls_inject_result;
+
+/* Traces s->inject_rays light paths (keyed by seed and path index) and
+ * finishes the entries: radiance = sum(flux x length) / (paths x measure). */
+il_status il_ls_inject(const il_scene *scene, const il_ls_settings *s, uint64_t seed, int threads,
+                       il_linespace *ls, il_ls_inject_result *out, il_error *err);
+
+/* ----------------------------------------------------- lookup */
+
+typedef enum il_ls_lookup_status {
+    IL_LS_FOUND = 0,
+    IL_LS_EMPTY,            /* outside the grid, no Linespace, shaft not stored or no deposit */
+    IL_LS_OCCLUDED          /* the in-shaft occlusion test found geometry first */
+} il_ls_lookup_status;
+
+/* The radiance arriving at p from direction w (unit, pointing away from p)
+ * as the Linespace holds it: the shaft and direction of the line through p
+ * along -w in p's voxel. */
+il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L);
+
+/* The in-shaft occlusion test: whether a triangle of the shaft's candidate
+ * list (or, for an overflowing shaft, anything in the scene) lies on the
+ * ray from org along w before it leaves org's voxel.  Skips triangle
+ * (self_mesh, self_prim). */
+bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
+                    uint32_t self_mesh, uint32_t self_prim);
+/* il_ls_lookup at x and, when occlusion_test, il_ls_occluded from x, with
+ * one walk (IL_LS_OCCLUDED first, then IL_LS_EMPTY). */
+il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
+                               bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L);
+
+#endif

@@ -1,0 +1,174 @@
+/* Emitting a light path for the injection pass: a light chosen by power,
+ * a start point and direction, and the power the path carries, Le cos /
+ * (pmf pdf_A pdf_w) (pbrt-v4 12.*, Light::SampleLe).  The same sampling as
+ * the photon tracer's (methods/photon/pm_emit.c, which a method may not
+ * include): point, spot with its cos^n profile, directional, area lights
+ * (emissive triangles, which Nilles 2017 could not inject) and the
+ * environment.  Dividing by the light's selection probability is what
+ * normalises every light on its own: its paths carry its whole power
+ * however few of them it gets, so lights mix by power, not by a shared
+ * counter (the thesis's Sponza error). */
+#include <math.h>
+#include <string.h>
+
+#include "core/sampling.h"
+#include "methods/linespace/ls.h"
+#include "scene/lights.h"
+#include "trace/trace.h"
+
+/* The light whose CDF interval holds u (the same choice as lights.c's
+ * selection by power): binary search of scene->light_cdf. */
+static uint32_t pick_light(const il_scene *s, float u)
+{
+    uint32_t lo = 0, hi = s->num_lights - 1;   /* cdf[lo] <= u, answer in [lo, hi] */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo + 1) / 2;
+        if (s->light_cdf[mid] <= u)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+/* A point on the disk of radius r, centred at c and perpendicular to unit d. */
+static il_vec3 disk_point(il_vec3 c, il_vec3 d, float r, il_vec2 u)
+{
+    il_frame f = il_frame_from_normal(d);
+    il_vec2 q = il_sample_concentric_disk(u);
+    return v3_fma(v3_fma(c, f.s, r * q.x), f.t, r * q.y);
+}
+
+/* A spot light's direction, drawn in proportion to its intensity profile
+ * I(theta) = I cos^n(theta) for cos(theta) >= cos_max (lights.c; with n > 0
+ * the profile ends at 90 degrees).  Inverting the CDF of cos^n(theta)
+ * sin(theta) on [theta, theta_c]:
+ *   cos(theta) = (1 - u (1 - cos_max^(n+1)))^(1/(n+1)),  phi = 2 pi u'.
+ * The pdf is I(theta)/I / Z with Z = 2 pi (1 - cos_max^(n+1)) / (n+1), so
+ * Le cos / pdf = I Z: every photon of the spot carries its whole power, the
+ * Phi of lights.c's power_spot. */
+static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
+{
+    float n = l->spot_exponent > 0.0f ? l->spot_exponent : 0.0f;
+    float cm = l->cos_cutoff;
+    if (n > 0.0f)
+        cm = il_maxf(cm, 0.0f);
+    cm = il_clampf(cm, -1.0f, 1.0f);
+    float c;
+    if (n > 0.0f) {
+        float cmn = powf(cm, n + 1.0f);
+        *z = 2.0f * IL_PI * (1.0f - cmn) / (n + 1.0f);
+        c = powf(1.0f - u.x * (1.0f - cmn), 1.0f / (n + 1.0f));
+    } else {
+        *z = 2.0f * IL_PI * (1.0f - cm);
+        c = 1.0f - u.x * (1.0f - cm);
+    }
+    c = il_clampf(c, cm, 1.0f);
+    float s = sqrtf(il_maxf(0.0f, 1.0f - c * c));
+    float phi = 2.0f * IL_PI * u.y;
+    il_frame f = il_frame_from_normal(l->direction);
+    return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
+}
+
+bool il_ls_emit(const il_scene *s, const float u[IL_LS_EMIT_DIMS], il_ls_emission *out)
+{
+    memset(out, 0, sizeof *out);
+    if (s->num_lights == 0 || !s->light_cdf || !s->light_pmf)
+        return false;
+    uint32_t li = pick_light(s, u[0]);
+    const il_light *l = &s->lights[li];
+    float pmf = s->light_pmf[li];
+    if (!(pmf > 0.0f))
+        return false;
+    out->light = li;
+    il_vec2 u_pos = v2(u[1], u[2]), u_dir = v2(u[3], u[4]);
+    float inv_pmf = 1.0f / pmf;
+
+    switch (l->kind) {
+    case IL_LIGHTK_POINT:
+        /* Uniform over the sphere: pdf 1/(4 pi), power 4 pi I (pbrt-v4 12.1). */
+        out->org = l->position;
+        out->dir = il_sample_uniform_sphere(u_dir);
+        out->power = v3_scale(l->intensity, 4.0f * IL_PI * inv_pmf);
+        break;
+    case IL_LIGHTK_SPOT: {
+        float z;
+        out->org = l->position;
+        out->dir = sample_spot(l, u_dir, &z);
+        out->power = v3_scale(l->intensity, z * inv_pmf);
+        break;
+    }
+    case IL_LIGHTK_DIRECTIONAL: {
+        /* A disk of the scene's bounding radius R facing the light, outside
+         * the bounding sphere: pdf_A = 1/(pi R^2), power E pi R^2 (pbrt-v4
+         * 12.4, DistantLight::SampleLe). */
+        float r = s->scene_radius;
+        il_vec3 c = v3_fma(s->scene_center, l->direction, -r);
+        out->org = disk_point(c, l->direction, r, u_pos);
+        out->dir = l->direction;
+        out->power = v3_scale(l->intensity, IL_PI * r * r * inv_pmf);
+        break;
+    }
+    case IL_LIGHTK_AREA: {
+        /* A uniform point (pdf 1/A) and a cosine-weighted direction about
+         * the front normal (pdf cos/pi): Le cos / (pdf_A pdf_w) = Le pi A.
+         * A two-sided emitter picks its face with probability 1/2, which
+         * doubles it (pbrt-v4 12.3, DiffuseAreaLight::SampleLe). */
+        il_vec2 b = il_sample_triangle(u_pos);
+        il_vec3 p, ng;
+        il_scene_point(s, l->mesh, l->prim, b.x, b.y, &p, &ng);
+        float scale = IL_PI * l->area * inv_pmf;
+        il_vec3 nd = ng;
+        if (l->two_sided) {
+            if (u_dir.x < 0.5f) {
+                nd = v3_neg(ng);
+                u_dir.x = 2.0f * u_dir.x;
+            } else {
+                u_dir.x = 2.0f * u_dir.x - 1.0f;
+            }
+            u_dir.x = il_minf(u_dir.x, 0x1.fffffep-1f);
+            scale *= 2.0f;
+        }
+        il_vec3 d_l = il_sample_cosine_hemisphere(u_dir);
+        if (!(d_l.z > 0.0f))
+            return false;   /* grazing: no power */
+        il_frame f = il_frame_from_normal(nd);
+        out->dir = v3_normalize(il_frame_to_world(&f, d_l));
+        out->org = il_offset_origin(s->tracer, p, ng, out->dir);
+        out->power = v3_scale(l->radiance, scale);
+        break;
+    }
+    case IL_LIGHTK_ENVIRONMENT: {
+        /* Arriving from a direction w through a disk of radius R facing it
+         * outside the bounding sphere (pdf 1/(pi R^2)): power
+         * L(w) pi R^2 / pdf(w) (pbrt-v4 12.5.1-2, UniformInfiniteLight and
+         * ImageInfiniteLight::SampleLe).  A constant sky: w uniform, pdf
+         * 1/(4 pi), so every photon carries L 4 pi pi R^2, lights.c's
+         * power_environment.  A map: w drawn from its importance tables
+         * (il_environment_sample), so photons go where its light is and
+         * carry nearly equal power. */
+        float r = s->scene_radius;
+        il_vec3 w, L;
+        float scale;
+        if (s->envmap) {
+            float pdf;
+            L = il_environment_sample(s, u_dir, &w, &pdf);
+            if (!(pdf > 0.0f))
+                return false;
+            scale = IL_PI * r * r * inv_pmf / pdf;
+        } else {
+            w = il_sample_uniform_sphere(u_dir);
+            L = il_environment_radiance(s, w);
+            scale = 4.0f * IL_PI * IL_PI * r * r * inv_pmf;
+        }
+        il_vec3 c = v3_fma(s->scene_center, w, r);
+        out->org = disk_point(c, w, r, u_pos);
+        out->dir = v3_neg(w);
+        out->power = v3_scale(L, scale);
+        break;
+    }
+    default:
+        return false;
+    }
+    return !v3_is_zero(out->power) && v3_is_finite(out->power);
+}

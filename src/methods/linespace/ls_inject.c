@@ -1,0 +1,277 @@
+/* The injection pass (Nilles 2017, sec. 3.2): light paths leave every
+ * light, bounce off the surfaces by sampling their BSDFs and survive by
+ * Russian roulette (as photons do, Jensen 2001, 5.2), and every segment
+ * after the first hit, i.e. light that has scattered at least once, leaves
+ * its flux in the Linespaces of the voxels it crosses.
+ *
+ * The thesis adds the irradiance E = I cos(theta) / d^2 that the segment's
+ * start receives and reads E / count back.  That is exact for a point light
+ * and one bounce only, and has no form for an area light.  Here a segment
+ * carrying flux Phi adds Phi * l to the entry of the shaft and direction its
+ * line runs through in each voxel, l its length inside the voxel: the
+ * track-length estimator (Spanier & Gelbard 1969; Jensen & Christensen's
+ * volume photon maps use its collision form).  After P paths,
+ *
+ *   L_shaft = sum(Phi l) / (P M_shaft)      [W m / (m^3 sr) = W m^-2 sr^-1]
+ *
+ * is an unbiased estimate of the mean radiance over the (point, direction)
+ * pairs of the voxel whose line lies in the shaft, M_shaft their measure
+ * (il_ls_shaft_measures).  For a point light the expected flux a first
+ * bounce at x sends into dw is rho/pi E(x) cos dA dw with E = I cos/d^2, the
+ * thesis's term; for an area light E(x) = int Le cos cos' / r^2 dA' comes
+ * out of the same sampling (docs/linespace.md, "Injection").
+ *
+ * Deterministic for a seed: each path's random numbers are keyed by its
+ * index, chunks of paths are traced in parallel into their own deposit
+ * lists and added in chunk order, whatever the thread count. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "methods/linespace/ls.h"
+#include "scene/bsdf.h"
+#include "trace/trace.h"
+
+#define LS_CHUNK 1024u
+
+typedef struct deposit {
+    uint64_t entry;
+    float rgb[3];
+} deposit;
+
+typedef struct chunk {
+    deposit *d;
+    size_t count, cap;
+    uint64_t rays;
+    bool oom;
+} chunk;
+
+static void push(chunk *c, uint64_t entry, il_vec3 v)
+{
+    if (c->count == c->cap) {
+        size_t cap = c->cap ? 2 * c->cap : 4096;
+        deposit *p = realloc(c->d, cap * sizeof(deposit));
+        if (!p) {
+            c->oom = true;
+            return;
+        }
+        c->d = p;
+        c->cap = cap;
+    }
+    c->d[c->count++] = (deposit){entry, {v.x, v.y, v.z}};
+}
+
+/* Walks the voxels the segment o + t d, t in [0, t_end] (d unit) crosses
+ * and deposits power * (its length in each) into the shaft of its line. */
+static void deposit_segment(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_vec3 power,
+                            chunk *c)
+{
+    /* Clip to the grid box (slab method). */
+    float t0 = 0.0f, t1 = t_end;
+    for (int i = 0; i < 3; i++) {
+        float di = v3_get(d, i), oi = v3_get(o, i);
+        float lo = v3_get(ls->lo, i), hi = v3_get(ls->hi, i);
+        if (di == 0.0f) {
+            if (oi < lo || oi > hi)
+                return;
+            continue;
+        }
+        float a = (lo - oi) / di, b = (hi - oi) / di;
+        if (a > b) {
+            float tmp = a;
+            a = b;
+            b = tmp;
+        }
+        t0 = il_maxf(t0, a);
+        t1 = il_minf(t1, b);
+    }
+    if (!(t1 > t0))
+        return;
+    const float step_eps = 1e-5f * v3_max_comp(ls->vsize);
+    float t = t0;
+    for (int guard = 0; t < t1 && guard < 100000; guard++) {
+        /* The cell the segment is in just after t. */
+        il_vec3 p = v3_fma(o, d, il_minf(t + step_eps, 0.5f * (t + t1)));
+        uint32_t cc[3];
+        if (!il_ls_cell_of(ls, p, cc))
+            return;
+        il_vec3 lo;
+        il_ls_cell_box(ls, cc, &lo);
+        uint32_t fi, pi, fo, po;
+        float tin, tout;
+        if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout))
+            return;
+        float t_next = il_minf(t1, v3_dot(v3_sub(p, o), d) + tout);
+        if (!(t_next > t))
+            t_next = t + step_eps;
+        int32_t v = ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])];
+        if (v >= 0) {
+            uint32_t dir;
+            uint32_t shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, &dir);
+            int64_t slot = il_ls_slot(ls, (uint32_t)v, shaft);
+            if (slot >= 0)
+                push(c, 2u * (uint64_t)slot + dir, v3_scale(power, t_next - t));
+        }
+        t = t_next;
+    }
+}
+
+/* The photon's weight from a sampled direction (pm_trace.c): a refraction
+ * scales radiance by 1/eta^2, which flux does not feel. */
+static il_vec3 flux_weight(const il_bsdf *b, il_vec3 wo, const il_bsdf_sample *bs)
+{
+    il_vec3 w = bs->weight;
+    if (b->type == IL_MATERIAL_DIELECTRIC) {
+        float co = v3_dot(wo, b->ng);
+        if (co * v3_dot(bs->wi, b->ng) < 0.0f) {
+            float eta = co > 0.0f ? b->ior : 1.0f / b->ior;
+            w = v3_scale(w, eta * eta);
+        }
+    }
+    return w;
+}
+
+static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth, uint64_t seed,
+                       uint64_t index, chunk *c)
+{
+    il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed ^ 0x4c53u, index), index);
+    float u[IL_LS_EMIT_DIMS];
+    for (int i = 0; i < IL_LS_EMIT_DIMS; i++)
+        u[i] = il_pcg32_float(&rng);
+    il_ls_emission e;
+    if (!il_ls_emit(s, u, &e))
+        return;
+    const il_tracer *tr = s->tracer;
+    il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
+    il_vec3 power = e.power;
+    for (uint32_t bounces = 0;; bounces++) {
+        il_hit hit;
+        c->rays++;
+        bool found = il_trace_closest(tr, &ray, &hit);
+        /* Segment `bounces` has scattered that many times: the first
+         * (straight from the light) is direct light, which the sampling
+         * pass takes by shadow rays. */
+        if (bounces > 0)
+            deposit_segment(ls, ray.org, ray.dir, found ? hit.t : INFINITY, power, c);
+        if (!found || bounces >= depth)
+            break;
+        il_surface surf;
+        il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
+        il_vec3 wo = v3_neg(ray.dir);
+        il_bsdf b;
+        il_bsdf_init(&b, s, &surf);
+        float u_lobe = il_pcg32_float(&rng);
+        il_vec2 u_dir;
+        u_dir.x = il_pcg32_float(&rng);
+        u_dir.y = il_pcg32_float(&rng);
+        float u_rr = il_pcg32_float(&rng);
+        il_bsdf_sample bs;
+        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_dir, &bs) || !il_sides_agree(&surf, wo, bs.wi))
+            break;
+        il_vec3 w = flux_weight(&b, wo, &bs);
+        /* Russian roulette on the sampled reflectance (Jensen 2001, 5.2.1). */
+        float q = il_minf(1.0f, v3_max_comp(w));
+        if (!(u_rr < q))
+            break;
+        power = v3_mul(power, v3_scale(w, 1.0f / q));
+        if (v3_is_zero(power) || !v3_is_finite(power))
+            break;
+        ray.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi);
+        ray.dir = bs.wi;
+        ray.tmin = 0.0f;
+        ray.tmax = INFINITY;
+    }
+}
+
+il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t seed, int threads,
+                       il_linespace *ls, il_ls_inject_result *out, il_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (threads <= 0) {
+#ifdef _OPENMP
+        threads = omp_get_max_threads();
+#else
+        threads = 1;
+#endif
+    }
+    const uint64_t paths = st->inject_rays;
+    const uint64_t num_entries = 2u * ls->num_stored;
+    double *acc = calloc(3u * num_entries + 1, sizeof(double));
+    uint64_t num_chunks = (paths + LS_CHUNK - 1) / LS_CHUNK;
+    uint64_t round = (uint64_t)threads * 4u;
+    if (round > num_chunks)
+        round = num_chunks ? num_chunks : 1;
+    chunk *ch = calloc((size_t)round, sizeof(chunk));
+    if (!acc || !ch) {
+        free(acc);
+        free(ch);
+        return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
+    }
+    bool oom = false;
+    for (uint64_t c0 = 0; c0 < num_chunks && !oom; c0 += round) {
+        int64_t n = (int64_t)(num_chunks - c0 < round ? num_chunks - c0 : round);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+        for (int64_t k = 0; k < n; k++) {
+            chunk c = ch[k];
+            c.count = 0;
+            c.rays = 0;
+            c.oom = false;
+            uint64_t lo = (c0 + (uint64_t)k) * LS_CHUNK;
+            uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
+            for (uint64_t i = lo; i < hi && !c.oom; i++)
+                trace_path(scene, ls, st->inject_depth, seed, i, &c);
+            ch[k] = c;
+        }
+        /* In chunk order: the sums do not depend on the thread count. */
+        for (int64_t k = 0; k < n; k++) {
+            oom |= ch[k].oom;
+            out->rays += ch[k].rays;
+            out->deposits += ch[k].count;
+            for (size_t i = 0; i < ch[k].count; i++) {
+                const deposit *d = &ch[k].d[i];
+                double *a = acc + 3u * d->entry;
+                a[0] += d->rgb[0];
+                a[1] += d->rgb[1];
+                a[2] += d->rgb[2];
+                ls->entries[d->entry].count++;
+            }
+        }
+    }
+    for (uint64_t k = 0; k < round; k++)
+        free(ch[k].d);
+    free(ch);
+    if (oom) {
+        free(acc);
+        return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory tracing light paths");
+    }
+    /* Radiance = sum(Phi l) / (P M).  Without the solid-angle correction
+     * every shaft is taken to be the mean size 2 pi V / (15 N^4), as a
+     * reading that ignores how much of the sphere a shaft covers does. */
+    double volume = (double)ls->vsize.x * ls->vsize.y * ls->vsize.z;
+    double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
+    for (uint32_t v = 0; v < ls->num_voxels; v++) {
+        for (uint32_t w = 0; w < ls->mask_words; w++) {
+            uint64_t m = ls->mask[(size_t)v * ls->mask_words + w];
+            while (m) {
+                uint32_t shaft = w * 64u + (uint32_t)__builtin_ctzll(m);
+                m &= m - 1u;
+                int64_t slot = il_ls_slot(ls, v, shaft);
+                double meas = st->solid_angle ? (double)ls->measure[shaft] : mean_measure;
+                double scale = meas > 0.0 ? 1.0 / ((double)paths * meas) : 0.0;
+                for (uint32_t dir = 0; dir < 2; dir++) {
+                    uint64_t e = 2u * (uint64_t)slot + dir;
+                    for (int c = 0; c < 3; c++)
+                        ls->entries[e].rgb[c] = (float)(acc[3u * e + c] * scale);
+                }
+            }
+        }
+    }
+    free(acc);
+    return IL_OK;
+}

@@ -1,0 +1,48 @@
+# `illum render --method linespace` end to end: the help, small renders of
+# the Cornell box with the variants, the "linespace" object of --stats and
+# the summary line, and bad options that stop before any output is written.
+. "$(dirname "$0")/lib.bash"
+
+expect_exit 0 "render --method linespace --help" -- "$ILLUM" render --method linespace --help
+for o in --grid --linespace-n --inject-rays --inject-depth --blur --occlusion-test --fallback \
+         --solid-angle --glossy-n1 --glossy-n2; do
+    expect_stdout -- "$o" "linespace help lists $o"
+done
+
+expect_exit 0 "render linespace" -- "$ILLUM" render cornell --method linespace --inject-rays 20000 \
+    --grid 4 --linespace-n 2 --width 24 --height 24 --spp 2 -o ls.exr --stats ls.json
+expect_file ls.exr "render linespace"
+expect_stderr "illum: linespace: grid 4x4x4, N 2" "render linespace: summary line"
+for k in '"method":[[:space:]]*"linespace"' '"linespace":' '"inject_rays":[[:space:]]*20000' '"voxels"' \
+         '"shafts"' '"candidates"' '"memory_bytes"' '"injected_segments"' '"lookups"' '"lookup_hits"' \
+         '"lookup_empty"' '"lookup_occluded"' '"seconds_build"' '"seconds_inject"' '"seconds_sample"' \
+         '"n":[[:space:]]*2'; do
+    checks=$((checks + 1))
+    grep -q "$k" ls.json || fail "ls.json lacks $k"
+done
+expect_exit 0 "render linespace, variants" -- "$ILLUM" render cornell --method linespace --inject-rays 20000 \
+    --grid 6 --blur 0.5 --occlusion-test off --fallback off --solid-angle off --inject-depth 3 \
+    --glossy-n1 5 --glossy-n2 50 --width 16 --height 16 --spp 1 -q -o var.pfm
+expect_file var.pfm "render linespace, variants"
+expect_exit 0 "render linespace, glossy and glass" -- "$ILLUM" render cornell-spheres --method linespace \
+    --inject-rays 20000 --width 16 --height 16 --spp 1 -q -o spheres.pfm
+expect_file spheres.pfm "render linespace, cornell-spheres"
+
+# Bad values and options of the wrong method: exit 1 or 2, no output.
+expect_exit 1 "--grid 0" -- "$ILLUM" render cornell --method linespace --grid 0 -q -o bad.exr
+expect_exit 1 "--grid 1000" -- "$ILLUM" render cornell --method linespace --grid 1000 -q -o bad.exr
+expect_exit 1 "--linespace-n 9" -- "$ILLUM" render cornell --method linespace --linespace-n 9 -q -o bad.exr
+expect_exit 1 "--inject-rays 0" -- "$ILLUM" render cornell --method linespace --inject-rays 0 -q -o bad.exr
+expect_exit 1 "--blur -1" -- "$ILLUM" render cornell --method linespace --blur -1 -q -o bad.exr
+expect_exit 1 "--fallback maybe" -- "$ILLUM" render cornell --method linespace --fallback maybe -q -o bad.exr
+expect_stderr "neither on nor off" "--fallback maybe"
+expect_exit 1 "--glossy-n2 below n1" -- "$ILLUM" render cornell --method linespace --glossy-n1 50 \
+    --glossy-n2 20 -q -o bad.exr
+expect_stderr "below --glossy-n1" "--glossy-n2 below n1"
+expect_exit 2 "--grid without a value" -- "$ILLUM" render cornell --method linespace --grid
+expect_exit 2 "linespace option with pt" -- "$ILLUM" render cornell --inject-rays 1000 -q -o bad.exr
+expect_stderr "needs --method linespace" "linespace option with pt"
+expect_no_file bad.exr "bad linespace options"
+expect_exit 1 "bake linespace" -- "$ILLUM" bake cornell --method linespace -q -o bad.ply
+expect_no_file bad.ply "bake linespace"
+finish
