@@ -46,6 +46,8 @@ static const char *help =
     "  --exposure EV          PNG only: scale by 2^EV before the sRGB transfer (or\n"
     "                         before the tone curve of --tonemap, listed below)\n"
     "  --stats FILE           write render statistics as JSON\n"
+    "  --write-every S        also write the outputs every S seconds while rendering\n"
+    "                         (after the pass that crosses each mark)\n"
     "  --quiet                no progress bar and no warnings\n"
     "\n"
     "While rendering, a progress bar with ETA and rays/s is drawn on stderr when it\n"
@@ -58,6 +60,7 @@ typedef struct render_options {
     const char *outputs[MAX_OUTPUTS];
     int num_outputs;
     const char *stats;
+    double write_every;              /* --write-every seconds; 0: only at the end */
     const char *camera_file;
     uint32_t width, height;
     il_render_desc desc;
@@ -95,11 +98,33 @@ typedef struct progress_state {
     bool draw;
     bool drawn;
     bool lights;                     /* ibl: passes_done counts lights */
+    const render_options *o;         /* outputs written by --write-every */
+    double next_write;               /* render seconds of the next --write-every write */
 } progress_state;
+
+/* --write-every: the film is complete after every pass, so the running image
+ * is written like the final one (each file atomically replaced). */
+static void write_running_image(progress_state *ps, const il_render_progress *p)
+{
+    const render_options *o = ps->o;
+    if (!o || !(o->write_every > 0.0) || !p->film || p->seconds < ps->next_write)
+        return;
+    while (ps->next_write <= p->seconds)
+        ps->next_write += o->write_every;
+    il_error err = {0};
+    il_image img = {0};
+    il_status st = il_film_resolve(p->film, &img, &err);
+    for (int i = 0; st == IL_OK && i < o->num_outputs; i++)
+        st = il_image_write(&img, o->outputs[i], &o->write, &err);
+    il_image_free(&img);
+    if (st != IL_OK)
+        cli_error("warning: writing the running image: %s", err.message);
+}
 
 static bool on_progress(const il_render_progress *p, void *user)
 {
     progress_state *ps = user;
+    write_running_image(ps, p);
     if (ps->draw) {
         double frac = p->passes_total ? (double)p->passes_done / p->passes_total : 0.0;
         if (p->time_limit > 0.0) {
@@ -355,6 +380,10 @@ static int parse_options(int argc, char **argv, render_options *o)
                 return IL_EXIT_BAD_INPUT;
             }
             o->outputs[o->num_outputs++] = v;
+        } else if (!strcmp(a, "--write-every")) {
+            VALUE();
+            if (!cli_parse_double(a, v, 0.001, 1e9, &o->write_every))
+                return IL_EXIT_BAD_INPUT;
         } else if (!strcmp(a, "--exr-float")) {
             o->write.exr_precision = IL_EXR_FLOAT;
         } else if (!strcmp(a, "--exposure")) {
@@ -531,7 +560,9 @@ int cmd_render(int argc, char **argv)
         il_scene_release(scene);
         return cli_exit_for(err.status);
     }
-    progress_state ps = {.draw = !o.quiet && isatty(STDERR_FILENO)};
+    o.write.tonemap = cli_tonemap_desc(&o.tm, o.write.exposure);
+    progress_state ps = {.draw = !o.quiet && isatty(STDERR_FILENO), .o = &o,
+                         .next_write = o.write_every};
     o.desc.progress = on_progress;
     o.desc.progress_user = &ps;
     if (o.desc.method == IL_METHOD_RADIOSITY) {
@@ -564,7 +595,6 @@ int cmd_render(int argc, char **argv)
     }
 
     il_image img = {0};
-    o.write.tonemap = cli_tonemap_desc(&o.tm, o.write.exposure);
     st = il_film_resolve(film, &img, &err);
     for (int i = 0; st == IL_OK && i < o.num_outputs; i++)
         st = il_image_write(&img, o.outputs[i], &o.write, &err);
