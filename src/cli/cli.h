@@ -28,6 +28,7 @@ bool cli_parse_u32(const char *opt, const char *s, uint32_t min, uint32_t max, u
 bool cli_parse_u64(const char *opt, const char *s, uint64_t *out);
 bool cli_parse_double(const char *opt, const char *s, double min, double max, double *out);
 bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out);
+bool cli_parse_on_off(const char *opt, const char *s, bool *out); /* "on" or "off" */
 
 /* Argument cursor: fetches the value after option argv[*i], or reports a usage error. */
 const char *cli_value(int argc, char **argv, int *i);

@@ -64,6 +64,16 @@ bool cli_parse_double(const char *opt, const char *s, double min, double max, do
     return true;
 }
 
+bool cli_parse_on_off(const char *opt, const char *s, bool *out)
+{
+    if (!strcmp(s, "on") || !strcmp(s, "off")) {
+        *out = !strcmp(s, "on");
+        return true;
+    }
+    cli_error("%s: '%s' is neither on nor off", opt, s);
+    return false;
+}
+
 bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out)
 {
     float v[3];

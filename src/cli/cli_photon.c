@@ -81,14 +81,10 @@ static bool parse_value(const char *name, const char *v, il_photon_desc *d)
         return true;
     }
     if (!strcmp(name, "--precomputed-irradiance")) {
-        if (!strcmp(v, "on"))
-            d->no_precomputed_irradiance = 0;
-        else if (!strcmp(v, "off"))
-            d->no_precomputed_irradiance = 1;
-        else {
-            cli_error("%s: '%s' is neither on nor off", name, v);
+        bool on;
+        if (!cli_parse_on_off(name, v, &on))
             return false;
-        }
+        d->no_precomputed_irradiance = !on;
         return true;
     }
     if (!strcmp(name, "--radius")) {

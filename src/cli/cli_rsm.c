@@ -46,15 +46,7 @@ static bool parse_value(const char *name, const char *v, il_rsm_desc *d)
         return ok;
     }
     /* --rsm-shadow-test */
-    if (!strcmp(v, "on"))
-        d->shadow_test = true;
-    else if (!strcmp(v, "off"))
-        d->shadow_test = false;
-    else {
-        cli_error("%s: '%s' is neither on nor off", name, v);
-        return false;
-    }
-    return true;
+    return cli_parse_on_off(name, v, &d->shadow_test);
 }
 
 bool cli_rsm_option(int argc, char **argv, int *i, cli_rsm_options *o, int *rc)
