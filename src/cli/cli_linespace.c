@@ -34,16 +34,13 @@ static const char *const names[] = {"--grid", "--linespace-n", "--inject-rays", 
                                     "--glossy-n1", "--glossy-n2"};
 #define COUNT(a) (sizeof a / sizeof a[0])
 
+/* An on/off option stored as its "no_" flag. */
 static bool parse_onoff(const char *name, const char *v, bool *off)
 {
-    if (!strcmp(v, "on"))
-        *off = false;
-    else if (!strcmp(v, "off"))
-        *off = true;
-    else {
-        cli_error("%s: '%s' is neither on nor off", name, v);
+    bool on = true;
+    if (!cli_parse_on_off(name, v, &on))
         return false;
-    }
+    *off = !on;
     return true;
 }
 

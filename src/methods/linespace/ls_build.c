@@ -142,8 +142,8 @@ static void voxel_pass(const il_linespace *ls, const il_scene *scene, const hull
     uint64_t t0 = ls->first_tri[v], nt = ls->first_tri[v + 1] - t0;
     out->mask = calloc(ls->mask_words, sizeof(uint64_t));
     bool dense = nt > IL_LS_DENSE;
-    size_t cap = 1024;
-    out->ends = malloc(ns * sizeof(uint32_t));
+    size_t cap = 1024, ends_cap = 256;
+    out->ends = malloc(ends_cap * sizeof(uint32_t));
     out->cands = malloc(cap * sizeof(uint16_t));
     tri_local *tl = dense ? NULL : malloc((size_t)nt * sizeof(tri_local) + 1);
     if (!out->mask || !out->ends || !out->cands || (!dense && !tl)) {
@@ -206,6 +206,16 @@ static void voxel_pass(const il_linespace *ls, const il_scene *scene, const hull
             continue;   /* no geometry in this shaft: nothing stored */
         num += here;
         out->mask[s / 64u] |= 1ull << (s % 64u);
+        if (stored == ends_cap) {
+            ends_cap *= 2;
+            uint32_t *p = realloc(out->ends, ends_cap * sizeof(uint32_t));
+            if (!p) {
+                out->oom = true;
+                free(tl);
+                return;
+            }
+            out->ends = p;
+        }
         out->ends[stored++] = num;
     }
     out->stored = stored;
@@ -321,6 +331,17 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
     for (uint64_t i = 0; i < cells; i++)
         nv += cell_first[i + 1] > cell_first[i];
     ls->num_voxels = nv;
+    /* At most 36 bytes per shaft (two entries, a list end, two candidates):
+     * refuse an upper bound beyond 4 GiB rather than be killed for it. */
+    uint64_t bound = (uint64_t)nv * ls->num_shafts;
+    if (bound > (1ull << 31) || bound * 36u > (4ull << 30)) {
+        free(cell_first);
+        il_ls_free(ls);
+        return il_fail(err, IL_ERR_INVALID,
+                       "linespace: %u non-empty voxels x %u shafts could take %.1f GB (limit 4; "
+                       "lower --grid or --linespace-n)",
+                       nv, il_ls_num_shafts(st->n), (double)bound * 36.0 / 1e9);
+    }
     ls->voxel_cell = malloc((size_t)nv * sizeof(uint32_t) + 4);
     ls->first_tri = malloc(((size_t)nv + 1) * sizeof(uint64_t));
     hull *hulls = malloc(ls->num_shafts * sizeof(hull));
