@@ -1,11 +1,11 @@
-/* Photon emission (pm_emit.c): every kind of light emits its analytic power
+/* Photon emission (methods/light_emit.c): every kind of light emits its analytic power
  * with the right distribution of directions, consistent with what the path
  * tracer receives from it (lights.c), and lights are chosen by power. */
 #include <string.h>
 
 #include "scene_build.h"
 #include "core/rng.h"
-#include "methods/photon/pm_emit.h"
+#include "methods/light_emit.h"
 #include "scene/lights.h"
 #include "trace/trace.h"
 
@@ -22,12 +22,12 @@ static void add_light(il_scene *s, il_light_desc d)
     CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
 }
 
-static bool emit(const il_scene *s, il_pcg32 *rng, il_pm_emission *e)
+static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
 {
-    float u[IL_PM_EMIT_DIMS];
-    for (int i = 0; i < IL_PM_EMIT_DIMS; i++)
+    float u[IL_LIGHT_EMIT_DIMS];
+    for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_pm_emit(s, u, e);
+    return il_light_emit(s, u, e);
 }
 
 /* Statistics of N photons. */
@@ -47,7 +47,7 @@ static stats run(const il_scene *s, il_vec3 axis, float min_cos, il_vec3 centre,
     memset(&st, 0, sizeof st);
     il_pcg32 rng = il_pcg32_seed(7, 11);
     for (int i = 0; i < N_PHOTONS; i++) {
-        il_pm_emission e;
+        il_light_emission e;
         if (!emit(s, &rng, &e)) {
             st.failed++;
             continue;
@@ -126,7 +126,7 @@ static void test_spot(float angle, float n, float expect_cutoff_cos)
     double bin_power[BINS] = {0}, bin_count[BINS] = {0};
     il_pcg32 rng = il_pcg32_seed(3, 5);
     for (int i = 0; i < N_PHOTONS; i++) {
-        il_pm_emission e;
+        il_light_emission e;
         if (!emit(s, &rng, &e))
             continue;
         double c = v3_dot(e.dir, axis);
@@ -183,7 +183,7 @@ static void test_area(bool two_sided)
     il_pcg32 rng = il_pcg32_seed(1, 2);
     uint32_t bad = 0, left = 0;
     for (int i = 0; i < 20000; i++) {
-        il_pm_emission e;
+        il_light_emission e;
         if (!emit(s, &rng, &e))
             continue;
         if (fabsf(e.p.y - 1.0f) > 1e-5f || fabsf(e.p.x) > 1.0001f || fabsf(e.p.z) > 0.5001f)
@@ -219,7 +219,7 @@ static void test_directional(void)
     il_pcg32 rng = il_pcg32_seed(9, 9);
     uint32_t bad = 0;
     for (int i = 0; i < 10000; i++) {
-        il_pm_emission e;
+        il_light_emission e;
         emit(s, &rng, &e);
         il_vec3 d = v3_sub(e.org, s->scene_center);
         if (fabs(v3_dot(d, dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
@@ -268,7 +268,7 @@ static void test_split(void)
     uint32_t unequal = 0;
     il_pcg32 rng = il_pcg32_seed(4, 4);
     for (int i = 0; i < N_PHOTONS; i++) {
-        il_pm_emission e;
+        il_light_emission e;
         if (!emit(s, &rng, &e))
             continue;
         const il_light *l = &s->lights[e.light];

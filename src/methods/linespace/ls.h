@@ -140,16 +140,6 @@ int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft);
 /* The box of cell c. */
 void il_ls_cell_box(const il_linespace *ls, const uint32_t c[3], il_vec3 *lo);
 
-/* ----------------------------------------------------- light emission */
-
-typedef struct il_ls_emission {
-    il_vec3 org, dir;
-    il_vec3 power;          /* W: the light's power over its selection probability */
-    uint32_t light;
-} il_ls_emission;
-#define IL_LS_EMIT_DIMS 5
-/* A light chosen by power, a point and a direction on it (as pm_emit.c). */
-bool il_ls_emit(const il_scene *scene, const float u[IL_LS_EMIT_DIMS], il_ls_emission *out);
 
 /* ----------------------------------------------------- injection */
 

@@ -34,6 +34,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "methods/light_emit.h"
 #include "methods/linespace/ls.h"
 #include "scene/bsdf.h"
 #include "trace/trace.h"
@@ -141,11 +142,11 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
                        uint64_t index, chunk *c)
 {
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed ^ 0x4c53u, index), index);
-    float u[IL_LS_EMIT_DIMS];
-    for (int i = 0; i < IL_LS_EMIT_DIMS; i++)
+    float u[IL_LIGHT_EMIT_DIMS];
+    for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
-    il_ls_emission e;
-    if (!il_ls_emit(s, u, &e))
+    il_light_emission e;
+    if (!il_light_emit(s, u, &e))
         return;
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};

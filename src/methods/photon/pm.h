@@ -10,7 +10,8 @@
  *   pm_estimate.c  radiance estimates from a map (filters, normal test)
  *   pm_irradiance.c precomputed irradiance at a subset of a map's photons
  *                  (Christensen 1999)
- *   pm_emit.c      emitting a photon from each kind of light
+ *   ../light_emit.c emitting a photon from each kind of light (shared with
+ *                  Linespace injection)
  *   pm_trace.c     following photons, filling the global and caustic maps
  *   pm_settings.c  the options: defaults, ranges, radii in scene units
  *   pm_path.c      camera (and gather) paths up to their first non-delta hit

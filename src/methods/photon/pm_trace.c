@@ -1,5 +1,5 @@
 /* Photon tracing (Jensen 2001, chapter 5; pbrt-v3 16.2.2): photons leave
- * the lights (pm_emit.c), bounce off the surfaces by sampling their BSDFs,
+ * the lights (methods/light_emit.c), bounce off the surfaces by sampling their BSDFs,
  * survive by Russian roulette on the sampled reflectance, and leave a copy
  * of themselves at every non-delta surface they reach after their first
  * bounce (direct light is computed with shadow rays instead). */
@@ -13,7 +13,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "methods/photon/pm.h"
-#include "methods/photon/pm_emit.h"
+#include "methods/light_emit.h"
 #include "trace/trace.h"
 
 /* Photons per parallel work item.  Fixed, so the work and the order of the
@@ -42,11 +42,11 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
 {
     /* The photon's own stream: keyed by (seed, index) only. */
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed, index), index);
-    float u[IL_PM_EMIT_DIMS];
-    for (int i = 0; i < IL_PM_EMIT_DIMS; i++)
+    float u[IL_LIGHT_EMIT_DIMS];
+    for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
-    il_pm_emission e;
-    if (!il_pm_emit(s, u, &e))
+    il_light_emission e;
+    if (!il_light_emit(s, u, &e))
         return 0;
 
     const il_tracer *tr = s->tracer;

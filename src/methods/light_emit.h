@@ -1,7 +1,7 @@
-/* Emitting one photon from the scene's lights (pm_emit.c): private to the
- * photon-mapping folder and its tests. */
-#ifndef IL_METHODS_PM_EMIT_H
-#define IL_METHODS_PM_EMIT_H
+/* Emitting one light path (a photon) from the scene's lights
+ * (light_emit.c): shared by photon mapping and Linespace light injection. */
+#ifndef IL_METHODS_LIGHT_EMIT_H
+#define IL_METHODS_LIGHT_EMIT_H
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -9,7 +9,7 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 
-typedef struct il_pm_emission {
+typedef struct il_light_emission {
     il_vec3 p;         /* the point sampled on the light (or on the disk of a
                           directional light or the environment) */
     il_vec3 org;       /* where the photon ray starts: p, lifted off an area
@@ -19,14 +19,14 @@ typedef struct il_pm_emission {
     il_vec3 power;     /* W: Le cos / (pmf pdf_area pdf_dir), the whole
                           emission as one photon (divide by the photons emitted) */
     uint32_t light;    /* index into scene->lights */
-} il_pm_emission;
+} il_light_emission;
 
 /* The random numbers one emission uses. */
-#define IL_PM_EMIT_DIMS 5
+#define IL_LIGHT_EMIT_DIMS 5
 
 /* Picks a light by power with u[0] (scene->light_pmf/light_cdf), a point
  * on it with u[1], u[2] and a direction with u[3], u[4]; each u in [0,1).
  * False when the sample carries no power. */
-bool il_pm_emit(const il_scene *scene, const float u[IL_PM_EMIT_DIMS], il_pm_emission *out);
+bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], il_light_emission *out);
 
 #endif

@@ -1,11 +1,13 @@
-/* Emitting a photon: a light chosen by power, then a ray and the power it
- * carries.  The photon's power is Le cos / (pmf pdf_A pdf_w), the estimator
+/* Emitting a photon (or a Linespace injection path): a light chosen by
+ * power, then a ray and the power it carries.  Dividing by the light's
+ * selection probability makes every light's paths carry its whole power
+ * however few of them it gets, so lights mix by power.  The photon's power is Le cos / (pmf pdf_A pdf_w), the estimator
  * of the light's emitted power (pbrt-v3 16.2.2, "Photon shooting" in SPPM,
  * and pbrt-v4 12.* Light::SampleLe; Jensen 2001, 5.1.1).  Every kind is
  * sampled so that this weight matches what lights.c lets the path tracer
  * receive from the same light, and so that it is the same for every photon
  * of a light (constant photon power keeps density estimates smooth). */
-#include "methods/photon/pm_emit.h"
+#include "methods/light_emit.h"
 
 #include <math.h>
 #include <string.h>
@@ -68,7 +70,7 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
     return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
 }
 
-bool il_pm_emit(const il_scene *s, const float u[IL_PM_EMIT_DIMS], il_pm_emission *out)
+bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
     if (s->num_lights == 0 || !s->light_cdf || !s->light_pmf)
