@@ -6,4 +6,9 @@ export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends \
     build-essential cmake pkg-config \
-    libembree-dev libassimp-dev libopenexr-dev libstb-dev libcjson-dev >/dev/null
+    libembree-dev libassimp-dev libopenexr-dev libstb-dev libcjson-dev \
+    libglfw3-dev libepoxy-dev xvfb xauth libgl1-mesa-dri \
+    libopenmpi-dev openmpi-bin >/dev/null
+# The last two lines are optional: the viewer (illum view, its test under
+# Xvfb) and MPI (mpirun -np N illum render); without them both are left out
+# of the build.

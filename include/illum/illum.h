@@ -662,6 +662,24 @@ typedef struct il_render_stats {
 il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
                     il_render_stats *stats, il_error *err);
 
+/* A render split into pieces (docs/distributed.md): the pixels [x0,x1) x [y0,y1). */
+typedef struct il_render_rect {
+    uint32_t x0, y0, x1, y1;
+} il_render_rect;
+
+/* The path tracer (desc->method IL_METHOD_PT, desc->time_limit 0) on one
+ * region: adds samples 0..spp-1 of its pixels to the film, which is NOT
+ * cleared; other pixels are untouched.  Each pixel gets the very sums
+ * il_render gives it, so regions rendered apart into cleared films and added
+ * (il_film_data) give il_render's film bit for bit.  No progress calls. */
+il_status il_render_region(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                           const il_render_rect *region, il_render_stats *stats,
+                           il_error *err);
+
+/* The film's accumulation buffer, to move films between processes: per pixel,
+ * row by row, 4 doubles: sum w*r, sum w*g, sum w*b, sum w. */
+double *il_film_data(il_film *film);
+
 /* ------------------------------------------------------------------- bake */
 
 /* Light written onto the geometry: the scene's meshes as the method meshed

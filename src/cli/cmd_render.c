@@ -10,6 +10,7 @@
 #include <cjson/cJSON.h>
 
 #include "cli/cli.h"
+#include "cli/cli_mpi.h"
 
 static const char *help =
     "usage: illum render SCENE [options]\n"
@@ -528,6 +529,8 @@ int cmd_render(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
+    if (cli_mpi_rank() > 0)
+        o.quiet = true; /* under mpirun only rank 0 reports */
     if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
         return rc;
     char default_out[512];
@@ -582,11 +585,17 @@ int cmd_render(int argc, char **argv)
     sigaction(SIGINT, &sa, &old_sa);
 
     il_render_stats rs = {0};
-    il_status st = il_render(scene, film, &o.desc, &rs, &err);
+    il_status st = cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &rs, !o.quiet, &err)
+                                    : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.rad);
     if (ps.drawn)
         fputc('\n', stderr);
+    if (cli_mpi_rank() > 0) { /* rank 0 writes the outputs and reports errors */
+        il_film_release(film);
+        il_scene_release(scene);
+        return st == IL_OK ? IL_EXIT_OK : cli_exit_for(st);
+    }
     if (st != IL_OK) {
         cli_error("%s", err.message);
         il_film_release(film);

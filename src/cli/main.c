@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/cli_mpi.h"
 
 static const char *usage =
     "illum " IL_VERSION_STRING " - global illumination\n"
@@ -56,8 +57,10 @@ int main(int argc, char **argv)
         puts("illum " IL_VERSION_STRING);
         return IL_EXIT_OK;
     }
-    if (!strcmp(cmd, "render"))
-        return cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "render")) {
+        cli_mpi_init(&argc, &argv); /* MPI only under mpirun (docs/distributed.md) */
+        return cli_mpi_finalize(cmd_render(argc - 1, argv + 1));
+    }
     if (!strcmp(cmd, "info"))
         return cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare"))

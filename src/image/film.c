@@ -40,6 +40,7 @@ il_status il_film_create(uint32_t width, uint32_t height, il_film **out, il_erro
 
 uint32_t il_film_width(const il_film *film) { return film ? film->width : 0; }
 uint32_t il_film_height(const il_film *film) { return film ? film->height : 0; }
+double *il_film_data(il_film *film) { return film ? film->sums : NULL; }
 
 void il_film_clear(il_film *film)
 {

@@ -40,6 +40,12 @@ il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampl
 il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_render_desc *desc,
                                uint32_t max_depth, il_pt_strategy strategy,
                                il_camera_pass_result *out, il_error *err);
+/* One tile of il_pt_wavefront_pass for a caller that runs its own tiles
+ * (methods/render_region.c): tile->scratch must hold
+ * il_pt_wavefront_scratch_bytes() (64-byte aligned). */
+size_t il_pt_wavefront_scratch_bytes(void);
+void il_pt_wavefront_tile(const il_scene *scene, uint32_t max_depth, il_pt_strategy strategy,
+                          const il_camera_pass_ctx *ctx, il_camera_tile *tile);
 
 /* The same estimator one vertex at a time, so that a caller can trace the
  * rays of many paths together (pt_wavefront.c): il_pt_begin starts a path

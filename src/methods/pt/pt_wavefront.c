@@ -215,3 +215,18 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
     pm.prefetch = triangles * sizeof(il_tri_geom) > PT_PREFETCH_BYTES;
     return il_camera_pass_tiles(scene, film, desc, render_tile, &pm, sizeof(pt_wave), out, err);
 }
+
+/* The tile work alone, for a caller that runs its own tiles
+ * (methods/render_region.c, the distributed render). */
+size_t il_pt_wavefront_scratch_bytes(void) { return sizeof(pt_wave); }
+
+void il_pt_wavefront_tile(const il_scene *scene, uint32_t max_depth, il_pt_strategy strategy,
+                          const il_camera_pass_ctx *ctx, il_camera_tile *tile)
+{
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy};
+    uint64_t triangles = 0;
+    for (uint32_t i = 0; i < scene->num_meshes; i++)
+        triangles += scene->meshes[i].num_triangles;
+    pm.prefetch = triangles * sizeof(il_tri_geom) > PT_PREFETCH_BYTES;
+    render_tile(&pm, ctx, tile);
+}
