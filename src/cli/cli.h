@@ -227,6 +227,19 @@ int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
  * between loading and committing. */
 int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);
 
+/* Compute devices (cli_device.c, docs/cuda.md): `illum info --devices`
+ * prints the CPU and every CUDA GPU (or why there is none); --device NAME is
+ * "cpu" or "cuda"; cli_device_require_cuda returns IL_EXIT_OK when a GPU
+ * can render, else prints why not and returns IL_EXIT_RUNTIME (no GPU, no
+ * driver, or a build without CUDA). */
+int cli_devices_list(void);
+bool cli_device_from_name(const char *name, bool *cuda);
+int cli_device_require_cuda(void);
+/* Renders --method pt with --spp on the GPU into *out (freed with
+ * il_image_free); IL_ERR_INVALID for what the GPU kernel does not do yet. */
+il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
+                                 uint32_t height, il_image *out, il_render_stats *rs, il_error *err);
+
 int cmd_render(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);
 int cmd_info(int argc, char **argv);

@@ -6,10 +6,13 @@
 
 static const char *help =
     "usage: illum info SCENE [--quiet]\n"
+    "       illum info --devices\n"
     "\n"
     "Loads SCENE (a file or a built-in name), validates it and prints the counts\n"
     "of meshes, triangles, materials, lights, the bounds, the camera and every\n"
-    "warning raised while loading.\n";
+    "warning raised while loading.  --devices lists the compute devices instead:\n"
+    "the CPU and each CUDA GPU (name, memory, compute capability, driver), or why\n"
+    "there is none.\n";
 
 int cmd_info(int argc, char **argv)
 {
@@ -19,6 +22,8 @@ int cmd_info(int argc, char **argv)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(help, stdout);
             return IL_EXIT_OK;
+        } else if (!strcmp(argv[i], "--devices")) {
+            return cli_devices_list();
         } else if (!strcmp(argv[i], "--quiet")) {
             quiet = true;
         } else {

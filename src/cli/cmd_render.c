@@ -35,6 +35,8 @@ static const char *help =
     "  --max-depth D          most bounces on a path; 1 = direct light only (default 8)\n"
     "  --seed S               random seed (default 0); same seed, same image\n"
     "  --threads T            worker threads (default: all cores)\n"
+    "  --device cpu|cuda      compute device (default cpu; cuda: see docs/cuda.md and\n"
+    "                         'illum info --devices')\n"
     "  --sampler sobol|pcg    sample sequence (default sobol: Owen-scrambled Sobol)\n"
     "  --filter box|gaussian  pixel filter (default box)\n"
     "  --camera-pos X,Y,Z --camera-target X,Y,Z --camera-up X,Y,Z --fov DEGREES\n"
@@ -68,6 +70,7 @@ typedef struct render_options {
     il_write_desc write;
     cli_tonemap_options tm;          /* --tonemap and the rest: PNG outputs */
     bool quiet;
+    bool cuda;                       /* --device cuda */
     bool has_pos, has_target, has_up, has_fov, has_seed;
     il_vec3 cam_pos, cam_target, cam_up;
     double fov;
@@ -321,6 +324,12 @@ static int parse_options(int argc, char **argv, render_options *o)
             if (!cli_parse_u64(a, v, &o->desc.seed))
                 return IL_EXIT_BAD_INPUT;
             o->has_seed = true;
+        } else if (!strcmp(a, "--device")) {
+            VALUE();
+            if (!cli_device_from_name(v, &o->cuda)) {
+                cli_error("--device: unknown device '%s' (available: cpu, cuda)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
         } else if (!strcmp(a, "--threads")) {
             VALUE();
             uint32_t t;
@@ -529,6 +538,8 @@ int cmd_render(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
+    if (o.cuda && (rc = cli_device_require_cuda()) != IL_EXIT_OK)
+        return rc;
     if (cli_mpi_rank() > 0)
         o.quiet = true; /* under mpirun only rank 0 reports */
     if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
@@ -585,8 +596,10 @@ int cmd_render(int argc, char **argv)
     sigaction(SIGINT, &sa, &old_sa);
 
     il_render_stats rs = {0};
-    il_status st = cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &rs, !o.quiet, &err)
-                                    : il_render(scene, film, &o.desc, &rs, &err);
+    il_image cuda_img = {0};
+    il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &cuda_img, &rs, &err)
+                   : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &rs, !o.quiet, &err)
+                                      : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.rad);
     if (ps.drawn)
@@ -603,8 +616,8 @@ int cmd_render(int argc, char **argv)
         return cli_exit_for(st);
     }
 
-    il_image img = {0};
-    st = il_film_resolve(film, &img, &err);
+    il_image img = cuda_img;
+    st = o.cuda ? IL_OK : il_film_resolve(film, &img, &err);
     for (int i = 0; st == IL_OK && i < o.num_outputs; i++)
         st = il_image_write(&img, o.outputs[i], &o.write, &err);
     il_image_free(&img);

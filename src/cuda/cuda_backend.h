@@ -1,0 +1,61 @@
+/* The CUDA backend's C interface (docs/cuda.md).  Implemented by the .cu
+ * files of this folder, which nvcc compiles into the illum_cuda library when
+ * the build has -DIL_CUDA=ON; callers test IL_HAVE_CUDA before using it.
+ * Every function reports a missing driver, a missing GPU or an out-of-memory
+ * device as an il_status with a one-line message; none exits or prints. */
+#ifndef IL_CUDA_BACKEND_H
+#define IL_CUDA_BACKEND_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "illum/illum.h"
+#include "kernel/bvh_build.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct il_cuda_device {
+    char name[256];
+    size_t total_memory;           /* bytes */
+    int cc_major, cc_minor;        /* compute capability */
+    int multiprocessors;
+} il_cuda_device;
+
+typedef struct il_cuda_versions {
+    int driver;                    /* CUDA version the driver supports, 1000 major + 10 minor; 0: no driver */
+    int runtime;                   /* the runtime illum was built with */
+} il_cuda_versions;
+
+/* Lists up to max GPUs into devs and their count into *count (0 is not an
+ * error: no GPU or no driver, with the reason in *why when why_size > 0). */
+il_status il_cuda_query(il_cuda_device *devs, int max, int *count, il_cuda_versions *versions,
+                        char *why, size_t why_size, il_error *err);
+
+/* Chooses device 0 and checks that it can run the kernels (a driver new
+ * enough, a compute capability the binary carries).  IL_ERR_RUNTIME with a
+ * message naming the cause otherwise. */
+il_status il_cuda_require_device(il_error *err);
+
+/* Casts n rays through the BVH on the GPU with the shared kernel
+ * (kernel/kernel_bvh.h): closest hits into hits and/or occlusion flags into
+ * occluded (either may be NULL).  Uploads the BVH with cudaMalloc/cudaMemcpy
+ * on every call: a test and measurement entry point, not a renderer's. */
+il_status il_cuda_trace_rays(const il_kbvh *bvh, const ilk_ray *rays, uint32_t n, ilk_hit *hits,
+                             uint8_t *occluded, il_error *err);
+
+typedef struct il_scene il_scene;
+
+/* Path traces the committed scene from its camera on the GPU with the
+ * shared kernel (kernel/kernel_path.h, one thread per pixel, spp samples
+ * each): rgb receives width x height x 3 floats, the mean radiance per
+ * pixel, rows top to bottom.  IL_ERR_INVALID for what the kernel does not do
+ * yet (il_kscene_build), IL_ERR_RUNTIME / IL_ERR_MEMORY for the GPU. */
+il_status il_cuda_render_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
+                            uint32_t max_depth, uint64_t seed, float *rgb, il_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,34 @@
+/* Packs a committed scene into the flat arrays of kernel/kernel_path.h: the
+ * BVH, the materials, the emissive triangles with their power CDF and the
+ * camera.  CPU only; src/cuda/ copies the arrays to the GPU as they are. */
+#ifndef IL_KERNEL_SCENE_H
+#define IL_KERNEL_SCENE_H
+
+#include "illum/illum.h"
+#include "kernel/bvh_build.h"
+#include "kernel/kernel_path.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct il_kscene {
+    il_kbvh bvh;
+    ilk_material *materials;  uint32_t num_materials;
+    uint32_t *lights;         uint32_t num_lights;
+    float *light_cdf;         /* num_lights + 1 */
+    ilk_scene view;           /* host pointers into the arrays above */
+} il_kscene;
+
+/* IL_ERR_INVALID when the scene needs what the kernel does not do yet
+ * (non-diffuse materials, textures, point/spot/directional lights, an
+ * environment): the caller falls back to, or points the user at, the CPU. */
+il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
+                          uint64_t seed, il_kscene *out, il_error *err);
+void il_kscene_free(il_kscene *ks);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,42 @@
+# The compute device options (docs/cuda.md): `illum info --devices` lists the
+# CPU and says what there is of CUDA; `illum render --device cuda` stops with
+# exit 3 and a reason, before writing anything, on a machine (or a build)
+# without a usable GPU, and renders on one; unknown devices are bad input.
+. "$(dirname "$0")/lib.bash"
+
+expect_exit 0 "info --devices" -- "$ILLUM" info --devices
+expect_stdout "^cpu: " "info --devices lists the CPU"
+expect_stdout "^cuda" "info --devices says something about CUDA"
+if grep -q "built without CUDA" out.txt; then cuda=off; else cuda=on; fi
+if grep -q "^cuda:[0-9]" out.txt; then gpu=yes; else gpu=no; fi
+echo "CUDA in the build: $cuda, a GPU: $gpu"
+
+expect_exit 0 "render --help" -- "$ILLUM" render --help
+expect_stdout "--device cpu|cuda" "render --help lists --device"
+expect_exit 1 "unknown device" -- "$ILLUM" render cornell --device gpu -o bad.exr
+expect_stderr "unknown device 'gpu'" "unknown device"
+expect_no_file bad.exr "unknown device"
+expect_exit 2 "--device without a value" -- "$ILLUM" render cornell --device
+
+if [ "$cuda" = on ] && [ "$gpu" = yes ]; then
+    # A GPU: path tracing renders; the other methods are refused (bad input).
+    expect_exit 0 "render --device cuda" -- "$ILLUM" render cornell --device cuda --spp 4 --width 32 --height 32 -q -o cuda.pfm
+    expect_file cuda.pfm "render --device cuda"
+    expect_exit 1 "render --device cuda --method radiosity" -- "$ILLUM" render cornell --device cuda --method radiosity -o bad.exr
+    expect_stderr "method pt" "render --device cuda --method radiosity"
+    expect_no_file bad.exr "render --device cuda --method radiosity"
+else
+    # No GPU, or no CUDA in the build: exit 3, a reason, no output file.
+    expect_exit 3 "render --device cuda" -- "$ILLUM" render cornell --device cuda --spp 1 -o cuda.exr
+    expect_no_file cuda.exr "render --device cuda"
+    if [ "$cuda" = off ]; then
+        expect_stderr "built without CUDA" "render --device cuda, no CUDA build"
+    else
+        expect_stderr "use --device cpu" "render --device cuda, no GPU"
+    fi
+fi
+
+# --device cpu is the default and renders as before.
+expect_exit 0 "render --device cpu" -- "$ILLUM" render cornell --device cpu --spp 1 --width 32 --height 32 -q -o cpu.pfm
+expect_file cpu.pfm "render --device cpu"
+finish
