@@ -480,6 +480,12 @@ typedef struct il_photon_desc {
                                   Lambertian surfaces from irradiance precomputed at
                                   every 4th photon (Christensen 1999); nonzero: a
                                   full estimate at every hit */
+    /* Optional, for display (the viewer's photon points): called once the
+     * photons are traced (PHOTON: the global map, which 0, then the caustic
+     * map, which 1; SPPM: every pass, which 2) with their positions, 3
+     * floats per photon, valid during the call only. */
+    void (*on_photons)(const float *positions, size_t count, int which, void *user);
+    void *on_photons_user;
 } il_photon_desc;
 
 typedef struct il_photon_stats {
@@ -707,6 +713,18 @@ typedef struct il_bake_result {
  * IL_ERR_INVALID until they can bake) and returns per-vertex radiance. */
 il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_result **out,
                   il_error *err);
+
+/* il_bake that shows the solve converging (the interactive viewer): after
+ * every solver step (radiosity: when il_radiosity_desc.on_step would be
+ * called, which is still called; hr: after every iteration but the last)
+ * on_step gets the solution so far as per-vertex meshes, like il_bake's,
+ * valid during the call only (current->stats is not filled).  Return false
+ * to stop the solve early; *out then holds the solution so far.  on_step
+ * NULL: il_bake. */
+typedef bool (*il_bake_step_fn)(const il_bake_result *current, void *user);
+il_status il_bake_progressive(const il_scene *scene, const il_render_desc *desc,
+                              il_bake_step_fn on_step, void *user, il_bake_result **out,
+                              il_error *err);
 
 typedef struct il_bake_write_desc {
     float exposure;            /* 8-bit colours: radiance * 2^exposure, clamped, sRGB */

@@ -246,5 +246,6 @@ int cmd_info(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_bake(int argc, char **argv);
 int cmd_envmap(int argc, char **argv);
+int cmd_view(int argc, char **argv);    /* cmd_view.c; the window needs IL_VIEWER */
 
 #endif

@@ -21,6 +21,7 @@ static const char *usage =
     "                           resample an environment map into another mapping\n"
     "  tonemap IN OUT.png [--op linear|gamma|reinhard|filmic] [options]\n"
     "                           tone-map an HDR image (EXR, HDR, PFM) to a PNG\n"
+    "  view SCENE [options]     interactive viewer (when built with IL_VIEWER)\n"
     "\n"
     "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
     "scene file (docs/scene-format.md) or a built-in name: cornell, atrium,\n"
@@ -49,6 +50,7 @@ int main(int argc, char **argv)
             if (!strcmp(argv[2], "bake")) return cmd_bake(2, sub);
             if (!strcmp(argv[2], "envmap")) return cmd_envmap(2, sub);
             if (!strcmp(argv[2], "tonemap")) return cmd_tonemap(2, sub);
+            if (!strcmp(argv[2], "view")) return cmd_view(2, sub);
         }
         fputs(usage, stdout);
         return IL_EXIT_OK;
@@ -71,6 +73,8 @@ int main(int argc, char **argv)
         return cmd_envmap(argc - 1, argv + 1);
     if (!strcmp(cmd, "tonemap"))
         return cmd_tonemap(argc - 1, argv + 1);
+    if (!strcmp(cmd, "view"))
+        return cmd_view(argc - 1, argv + 1);
     cli_error("unknown command '%s' (try 'illum --help')", cmd);
     return IL_EXIT_USAGE;
 }

@@ -206,8 +206,62 @@ done:
     return st;
 }
 
+/* il_bake_progressive's look at a solve: per-patch radiance to per-vertex
+ * meshes, as at the end of il_bake, handed to the caller's callback. */
+typedef struct bake_watch {
+    const il_scene *scene;
+    il_bake_step_fn on_step;
+    void *user;
+} bake_watch;
+
+static bool watch_patches(const il_patch_mesh *mesh, const float *radiance, void *user)
+{
+    const bake_watch *w = user;
+    il_error err = {0};
+    size_t nv = mesh->num_vertices ? mesh->num_vertices : 1u;
+    size_t np = mesh->num_patches ? mesh->num_patches : 1u;
+    il_vec3 *pr = il_malloc(np * sizeof *pr, &err), *vr = il_malloc(nv * sizeof *vr, &err);
+    il_bake_result cur = {0};
+    bool go = true;
+    if (pr && vr) {
+        for (uint32_t i = 0; i < mesh->num_patches; i++)
+            pr[i] = v3(radiance[3 * (size_t)i], radiance[3 * (size_t)i + 1],
+                       radiance[3 * (size_t)i + 2]);
+        il_patch_vertex_radiance(mesh, pr, vr);
+        if (convert(w->scene, mesh, vr, &cur, &err) == IL_OK)
+            go = w->on_step(&cur, w->user);
+    }
+    /* Without memory for a look the solve goes on unseen. */
+    free(pr);
+    free(vr);
+    if (cur.meshes)
+        for (uint32_t i = 0; i < cur.num_meshes; i++) {
+            free(cur.meshes[i].positions);
+            free(cur.meshes[i].normals);
+            free(cur.meshes[i].radiance);
+            free(cur.meshes[i].indices);
+        }
+    free(cur.meshes);
+    return go;
+}
+
+/* Radiosity reports steps only to an on_step: one that goes on. */
+static bool keep_going(const il_radiosity_progress *p, void *user)
+{
+    (void)p;
+    (void)user;
+    return true;
+}
+
 il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_result **out,
                   il_error *err)
+{
+    return il_bake_progressive(scene, desc, NULL, NULL, out, err);
+}
+
+il_status il_bake_progressive(const il_scene *scene, const il_render_desc *desc,
+                              il_bake_step_fn on_step, void *user, il_bake_result **out,
+                              il_error *err)
 {
     if (!out)
         return il_fail(err, IL_ERR_INVALID, "bake: no result pointer given");
@@ -232,9 +286,24 @@ il_status il_bake(const il_scene *scene, const il_render_desc *desc, il_bake_res
     il_patch_mesh *mesh = NULL;
     il_vec3 *vr = NULL;
     /* Both diffuse methods end in (patch mesh, per-vertex radiance). */
-    il_status st = desc->method == IL_METHOD_HR
-                       ? il_hr_run(scene, desc, &mesh, &vr, &res->stats, err)
-                       : il_rad_run(scene, desc, &mesh, NULL, &vr, &res->stats, err);
+    il_status st;
+    if (on_step) {
+        bake_watch w = {scene, on_step, user};
+        il_render_desc d = *desc;
+        il_radiosity_desc rd = {0};
+        if (desc->radiosity)
+            rd = *desc->radiosity;
+        if (!rd.on_step)
+            rd.on_step = keep_going;
+        d.radiosity = &rd;
+        st = desc->method == IL_METHOD_HR
+                 ? il_hr_run_watched(scene, &d, watch_patches, &w, &mesh, &vr, &res->stats, err)
+                 : il_rad_run_watched(scene, &d, watch_patches, &w, &mesh, &vr, &res->stats, err);
+    } else {
+        st = desc->method == IL_METHOD_HR
+                 ? il_hr_run(scene, desc, &mesh, &vr, &res->stats, err)
+                 : il_rad_run(scene, desc, &mesh, NULL, &vr, &res->stats, err);
+    }
     if (st == IL_OK)
         st = convert(scene, mesh, vr, res, err);
     if (mesh)

@@ -16,8 +16,41 @@ il_status il_hr_root_mesh(const il_scene *scene, il_patch_mesh **out, il_error *
     return il_patch_mesh_build(scene, &one, out, err);
 }
 
-il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
-                    il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
+/* il_hr_run_watched's hook: the leaves' mesh of the solve so far. */
+typedef struct watch {
+    bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance, void *user);
+    void *user;
+} watch;
+
+static bool on_iteration(const il_hr_solver *s, void *user)
+{
+    const watch *w = user;
+    il_patch_mesh *mesh = NULL;
+    il_vec3 *patch_rad = NULL;
+    il_error err = {0};
+    if (il_hr_output_mesh(s, &mesh, &patch_rad, &err) != IL_OK)
+        return true;          /* no look this time; the solve goes on */
+    uint32_t n = mesh->num_patches;
+    float *rad = malloc((size_t)(n ? n : 1u) * 3 * sizeof *rad);
+    bool go = true;
+    if (rad) {
+        for (uint32_t i = 0; i < n; i++) {
+            rad[3 * (size_t)i + 0] = patch_rad[i].x;
+            rad[3 * (size_t)i + 1] = patch_rad[i].y;
+            rad[3 * (size_t)i + 2] = patch_rad[i].z;
+        }
+        go = w->on_patches(mesh, rad, w->user);
+    }
+    free(rad);
+    free(patch_rad);
+    if (mesh != s->mesh)
+        il_patch_mesh_release(mesh);
+    return go;
+}
+
+static il_status run(const il_scene *scene, const il_render_desc *desc, const watch *w,
+                     il_patch_mesh **mesh_out, il_vec3 **vertex_radiance_out,
+                     il_render_stats *stats, il_error *err)
 {
     if (mesh_out)
         *mesh_out = NULL;
@@ -37,6 +70,10 @@ il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_
     il_status st = il_hr_settings_resolve(desc, &set, err);
     if (st != IL_OK)
         return st;
+    if (w && w->on_patches) {
+        set.on_iteration = on_iteration;
+        set.on_iteration_user = (void *)w;
+    }
 
     il_patch_mesh *roots = NULL, *mesh = NULL;
     il_vec3 *patch_rad = NULL, *vr = NULL;
@@ -83,6 +120,22 @@ il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_
     else
         free(vr);
     return IL_OK;
+}
+
+il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
+                    il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
+{
+    return run(scene, desc, NULL, mesh_out, vertex_radiance_out, stats, err);
+}
+
+il_status il_hr_run_watched(const il_scene *scene, const il_render_desc *desc,
+                            bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance,
+                                               void *user),
+                            void *on_patches_user, il_patch_mesh **mesh_out,
+                            il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
+{
+    watch w = {on_patches, on_patches_user};
+    return run(scene, desc, &w, mesh_out, vertex_radiance_out, stats, err);
 }
 
 il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_desc *desc,

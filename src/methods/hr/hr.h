@@ -44,6 +44,8 @@
 
 /* ------------------------------------------------------------- settings */
 
+struct il_hr_solver;
+
 typedef struct il_hr_settings {
     float bf_eps;
     float area_eps;            /* relative to the scene diagonal squared */
@@ -52,6 +54,11 @@ typedef struct il_hr_settings {
     uint32_t max_iterations;
     uint64_t seed;
     int threads;               /* > 0, resolved */
+    /* Internal (il_bake_progressive, bake.c): called after every iteration
+     * (refine, gather, push-pull) with the solver; false stops the
+     * iterations.  NULL from il_hr_settings_resolve. */
+    bool (*on_iteration)(const struct il_hr_solver *solver, void *user);
+    void *on_iteration_user;
 } il_hr_settings;
 
 /* Resolves defaults and checks ranges (clear messages, IL_ERR_INVALID). */
@@ -250,6 +257,13 @@ il_status il_hr_root_mesh(const il_scene *scene, il_patch_mesh **out, il_error *
  * stats->hr is filled. */
 il_status il_hr_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
                     il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err);
+/* il_hr_run that hands the leaves' mesh and per-patch radiance (3 floats per
+ * patch) to on_patches after every iteration; false stops the iterations. */
+il_status il_hr_run_watched(const il_scene *scene, const il_render_desc *desc,
+                            bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance,
+                                               void *user),
+                            void *on_patches_user, il_patch_mesh **mesh_out,
+                            il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err);
 
 /* The il_render entry point for IL_METHOD_HR. */
 il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_desc *desc,

@@ -51,6 +51,8 @@ il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out
     out->vis_rays = d->vis_rays > 0 ? d->vis_rays : 16u;
     out->max_iterations = d->max_iterations > 0 ? d->max_iterations : 100u;
     out->seed = desc->seed;
+    out->on_iteration = NULL;
+    out->on_iteration_user = NULL;
     out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     if (out->threads < 1)
         out->threads = 1;

@@ -210,6 +210,8 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         prev = energy;
         if (done)
             break;
+        if (set->on_iteration && !set->on_iteration(s, set->on_iteration_user))
+            break;
         if (reorder(s, err) != IL_OK) {
             il_hr_solver_free(s);
             return IL_ERR_MEMORY;

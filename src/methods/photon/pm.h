@@ -220,6 +220,9 @@ typedef struct il_pm_photons {
  * frees the arrays (or hands them to il_pm_map_build). */
 il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm_photons *out,
                       il_error *err);
+/* Hands the photons' positions to d->on_photons when it is set (d may be
+ * NULL); without memory for the copy it is not called. */
+void il_pm_report_photons(const il_photon_desc *d, const il_photon *photons, size_t n, int which);
 
 /* ------------------------------------------------------------- rendering */
 

@@ -1,6 +1,7 @@
 /* The 20-byte stored photon (pm.h): float position, RGBE power, octahedral
  * direction and normal. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "methods/photon/pm_internal.h"
@@ -144,4 +145,19 @@ il_vec3 il_photon_dir(const il_photon *ph) { return il_oct_unpack(ph->dir, 8); }
 il_vec3 il_photon_normal(const il_photon *ph)
 {
     return il_oct_unpack((uint16_t)(ph->normal & IL_PM_NORMAL_MASK), 7);
+}
+
+/* --------------------------------------------------------------- display */
+
+void il_pm_report_photons(const il_photon_desc *d, const il_photon *photons, size_t n, int which)
+{
+    if (!d || !d->on_photons)
+        return;
+    float *xyz = malloc((n ? n : 1u) * 3 * sizeof *xyz);
+    if (!xyz)
+        return;
+    for (size_t i = 0; i < n; i++)
+        memcpy(xyz + 3 * i, photons[i].p, 3 * sizeof *xyz);
+    d->on_photons(xyz, n, which, d->on_photons_user);
+    free(xyz);
 }

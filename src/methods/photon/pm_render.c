@@ -144,6 +144,8 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
         if (s != IL_OK)
             return s;
     }
+    il_pm_report_photons(desc->photon, ph.global, ph.num_global, 0);
+    il_pm_report_photons(desc->photon, ph.caustic, ph.num_caustic, 1);
     double t1 = omp_get_wtime();
     float scale = 1.0f / (float)ps->photons;
     il_status s = il_pm_map_build(global, ph.global, ph.num_global, scale, ps->lookup.lookup,

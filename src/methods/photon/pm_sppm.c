@@ -136,6 +136,7 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
     if (status != IL_OK)
         return status;
     free(ph.caustic);
+    il_pm_report_photons(s->desc->photon, ph.global, ph.num_global, 2);
     st->emitted += s->ps.photons;
     st->stored += ph.num_global;
     st->photon_rays += ph.rays;

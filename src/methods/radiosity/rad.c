@@ -57,9 +57,10 @@ static il_status solve_mesh(const il_scene *scene, const il_patch_mesh *mesh,
     return st;
 }
 
-il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
-                     il_rad_solution *sol_out, il_vec3 **vertex_radiance_out,
-                     il_render_stats *stats, il_error *err)
+static il_status run(const il_scene *scene, const il_render_desc *desc,
+                     bool (*on_patches)(const il_patch_mesh *, const float *, void *),
+                     void *on_patches_user, il_patch_mesh **mesh_out, il_rad_solution *sol_out,
+                     il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
 {
     if (mesh_out)
         *mesh_out = NULL;
@@ -83,6 +84,8 @@ il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch
     il_status st = il_rad_settings_resolve(scene, desc, &settings, err);
     if (st != IL_OK)
         return st;
+    settings.on_patches = on_patches;
+    settings.on_patches_user = on_patches_user;
 
     il_patch_mesh *mesh = NULL;
     il_rad_solution sol;
@@ -162,6 +165,23 @@ fail:
     if (mesh)
         il_patch_mesh_release(mesh);
     return st;
+}
+
+il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
+                     il_rad_solution *sol_out, il_vec3 **vertex_radiance_out,
+                     il_render_stats *stats, il_error *err)
+{
+    return run(scene, desc, NULL, NULL, mesh_out, sol_out, vertex_radiance_out, stats, err);
+}
+
+il_status il_rad_run_watched(const il_scene *scene, const il_render_desc *desc,
+                             bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance,
+                                                void *user),
+                             void *on_patches_user, il_patch_mesh **mesh_out,
+                             il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err)
+{
+    return run(scene, desc, on_patches, on_patches_user, mesh_out, NULL, vertex_radiance_out,
+               stats, err);
 }
 
 /* il_rad_run without the per-patch radiance: an il_patch_solve_fn. */

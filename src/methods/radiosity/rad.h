@@ -49,6 +49,11 @@ typedef struct il_rad_settings {
     float adaptive_threshold;
     il_radiosity_step_fn on_step;
     void *on_step_user;
+    /* Internal (il_bake_progressive, bake.c): called with the patch mesh
+     * just before on_step, with the same radiance (3 floats per patch);
+     * false stops the solve.  NULL from il_rad_settings_resolve. */
+    bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance, void *user);
+    void *on_patches_user;
     uint64_t seed;
     int threads;               /* > 0, resolved */
 } il_rad_settings;
@@ -163,6 +168,14 @@ uint32_t il_rad_mark_split(const il_patch_mesh *mesh, const il_rad_solution *sol
 il_status il_rad_run(const il_scene *scene, const il_render_desc *desc, il_patch_mesh **mesh_out,
                      il_rad_solution *sol_out, il_vec3 **vertex_radiance_out,
                      il_render_stats *stats, il_error *err);
+
+/* il_rad_run with settings.on_patches set (il_bake_progressive); on_step
+ * must be set too (in desc->radiosity) for the solver to report steps. */
+il_status il_rad_run_watched(const il_scene *scene, const il_render_desc *desc,
+                             bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance,
+                                                void *user),
+                             void *on_patches_user, il_patch_mesh **mesh_out,
+                             il_vec3 **vertex_radiance_out, il_render_stats *stats, il_error *err);
 
 /* The il_render entry point for IL_METHOD_RADIOSITY. */
 il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_desc *desc,

@@ -113,6 +113,8 @@ il_status il_rad_settings_resolve(const il_scene *scene, const il_render_desc *d
     out->adaptive_threshold = r.adaptive_threshold;
     out->on_step = r.on_step;
     out->on_step_user = r.on_step_user;
+    out->on_patches = NULL;
+    out->on_patches_user = NULL;
     out->seed = desc->seed;
     out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     if (out->threads < 1)

@@ -181,5 +181,7 @@ bool il_rad_report_step(const il_patch_mesh *mesh, const il_rad_settings *settin
         .seconds = seconds,
         .radiance = display,
     };
+    if (settings->on_patches && !settings->on_patches(mesh, display, settings->on_patches_user))
+        return false;
     return settings->on_step(&prog, settings->on_step_user);
 }

@@ -1,0 +1,318 @@
+/* `illum view SCENE`: the interactive viewer (docs/viewer.md).  The options
+ * are parsed here in every build; the window itself (src/viewer/) exists only
+ * when the program was built with IL_VIEWER (GLFW and epoxy found). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "cli/cli.h"
+#ifdef IL_HAVE_VIEWER
+#include "viewer/viewer.h"
+#endif
+
+static const char *help =
+    "usage: illum view SCENE [options]\n"
+    "\n"
+    "Opens a window (OpenGL 3.3) on the scene and refines the chosen method's\n"
+    "image while the camera rests; the keys are listed in docs/viewer.md.\n"
+    "\n"
+    "options:\n"
+    "  --method M             pt (default), photon, sppm, radiosity, hr, ibl, linespace, rsm\n"
+    "  --spp N                stop refining at N samples per pixel (default: never)\n"
+    "  --width W --height H   image and window size (default 512 x 512)\n"
+    "  --max-depth N          most bounces on a path (default 8)\n"
+    "  --seed S               random seed\n"
+    "  --threads N            render threads (default all cores)\n"
+    "  --camera-pos X,Y,Z --camera-target X,Y,Z --camera-up X,Y,Z --fov DEGREES\n"
+    "  --camera-file FILE     camera JSON, as 'illum render --camera-file' reads\n"
+    "  --exposure EV          display exposure (keys + and -)\n"
+    "  --tonemap OP           linear (default), gamma, reinhard, filmic (key T)\n"
+    "  --env FILE ...         environment map, as for 'illum render'\n"
+    "  --save PREFIX          F9/P write PREFIX.exr and PREFIX.png, C writes\n"
+    "                         PREFIX-camera.json (default 'illum-view')\n"
+    "  --frames N             scripted: exit after N frames once the image is complete\n"
+    "                         (needs --spp)\n"
+    "  --screenshot FILE.png  scripted: write the window's pixels at exit\n"
+    "  --look-screenshot FILE.png\n"
+    "                         scripted, radiosity/hr mesh: the window's pixels when it\n"
+    "                         draws the first look at the solve in progress\n"
+    "  --keys KEYS            scripted: press these keys one by one once the image is\n"
+    "                         complete ('<' '>' orbit left/right, '~' orbits 2 s and\n"
+    "                         measures the frame rate), e.g. --keys '>PC'\n"
+    "  --quiet                no warnings\n"
+    "Each method's own options (see 'illum render --method M --help') apply when\n"
+    "that method is shown.\n";
+
+typedef struct view_options {
+    const char *scene, *camera_file, *screenshot, *look_screenshot, *save, *keys;
+    il_render_desc desc;
+    uint32_t width, height, frames;
+    double exposure;
+    cli_tonemap_options tm;
+    cli_env_options env;
+    cli_radiosity_options rad;       /* each method's own options, as for render */
+    cli_hr_options hr;
+    cli_photon_options photon;
+    cli_ibl_options ibl;
+    cli_rsm_options rsm;
+    cli_linespace_options linespace;
+    bool quiet, has_pos, has_target, has_up, has_fov;
+    il_vec3 pos, target, up;
+    double fov;
+} view_options;
+
+static bool json_vec3(const cJSON *root, const char *key, il_vec3 *out, bool *has, const char *file)
+{
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, key);
+    if (!a)
+        return true;
+    if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3) {
+        cli_error("%s: \"%s\" must be an array of three numbers", file, key);
+        return false;
+    }
+    float v[3];
+    for (int k = 0; k < 3; k++) {
+        const cJSON *e = cJSON_GetArrayItem(a, k);
+        if (!cJSON_IsNumber(e)) {
+            cli_error("%s: \"%s\" must be an array of three numbers", file, key);
+            return false;
+        }
+        v[k] = (float)e->valuedouble;
+    }
+    if (!*has)  /* command-line options win over the file */
+        *out = (il_vec3){v[0], v[1], v[2]};
+    *has = true;
+    return true;
+}
+
+static int read_camera_file(view_options *o)
+{
+    FILE *f = fopen(o->camera_file, "rb");
+    if (!f) {
+        cli_error("%s: cannot open the camera file", o->camera_file);
+        return IL_EXIT_BAD_INPUT;
+    }
+    char buf[65536];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    cJSON *root = cJSON_Parse(buf);
+    bool ok = root && cJSON_IsObject(root);
+    if (!ok)
+        cli_error("%s: not a JSON object", o->camera_file);
+    ok = ok && json_vec3(root, "position", &o->pos, &o->has_pos, o->camera_file) &&
+         json_vec3(root, "target", &o->target, &o->has_target, o->camera_file) &&
+         json_vec3(root, "up", &o->up, &o->has_up, o->camera_file);
+    const cJSON *fov = ok ? cJSON_GetObjectItemCaseSensitive(root, "fov") : NULL;
+    if (fov && !cJSON_IsNumber(fov)) {
+        cli_error("%s: \"fov\" must be a number", o->camera_file);
+        ok = false;
+    } else if (fov && !o->has_fov) {
+        o->fov = fov->valuedouble;
+        o->has_fov = true;
+    }
+    cJSON_Delete(root);
+    return ok ? IL_EXIT_OK : IL_EXIT_BAD_INPUT;
+}
+
+static int parse_options(int argc, char **argv, view_options *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = NULL;
+        int opt_rc;
+        if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
+            cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
+            cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
+            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
+            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc) ||
+            cli_ibl_option(argc, argv, &i, &o->ibl, &opt_rc) ||
+            cli_rsm_option(argc, argv, &i, &o->rsm, &opt_rc) ||
+            cli_linespace_option(argc, argv, &i, &o->linespace, &opt_rc)) {
+            if (opt_rc != IL_EXIT_OK)
+                return opt_rc;
+            continue;
+        }
+#define VALUE()                                   \
+    do {                                          \
+        if (!(v = cli_value(argc, argv, &i)))     \
+            return IL_EXIT_USAGE;                 \
+    } while (0)
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            return -1;
+        } else if (!strcmp(a, "--method")) {
+            VALUE();
+            if (!cli_method_from_name(v, &o->desc.method)) {
+                cli_error("--method: unknown method '%s' "
+                          "(available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)", v);
+                return IL_EXIT_BAD_INPUT;
+            }
+        } else if (!strcmp(a, "--spp")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 1u << 24, &o->desc.spp))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--width")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 8, 8192, &o->width))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--height")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 8, 8192, &o->height))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--max-depth")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--seed")) {
+            VALUE();
+            if (!cli_parse_u64(a, v, &o->desc.seed))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--threads")) {
+            VALUE();
+            uint32_t t;
+            if (!cli_parse_u32(a, v, 1, 4096, &t))
+                return IL_EXIT_BAD_INPUT;
+            o->desc.threads = (int)t;
+        } else if (!strcmp(a, "--camera-pos")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->pos))
+                return IL_EXIT_BAD_INPUT;
+            o->has_pos = true;
+        } else if (!strcmp(a, "--camera-target")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->target))
+                return IL_EXIT_BAD_INPUT;
+            o->has_target = true;
+        } else if (!strcmp(a, "--camera-up")) {
+            VALUE();
+            if (!cli_parse_vec3(a, v, &o->up))
+                return IL_EXIT_BAD_INPUT;
+            o->has_up = true;
+        } else if (!strcmp(a, "--fov")) {
+            VALUE();
+            if (!cli_parse_double(a, v, 1.0, 179.0, &o->fov))
+                return IL_EXIT_BAD_INPUT;
+            o->has_fov = true;
+        } else if (!strcmp(a, "--camera-file")) {
+            VALUE();
+            o->camera_file = v;
+        } else if (!strcmp(a, "--exposure")) {
+            VALUE();
+            if (!cli_parse_double(a, v, -64.0, 64.0, &o->exposure))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--save")) {
+            VALUE();
+            o->save = v;
+        } else if (!strcmp(a, "--frames")) {
+            VALUE();
+            if (!cli_parse_u32(a, v, 1, 1u << 30, &o->frames))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--screenshot")) {
+            VALUE();
+            o->screenshot = v;
+        } else if (!strcmp(a, "--look-screenshot")) {
+            VALUE();
+            o->look_screenshot = v;
+        } else if (!strcmp(a, "--keys")) {
+            VALUE();
+            o->keys = v;
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            o->quiet = true;
+        } else {
+            int rc = cli_scene_argument("view", a, &o->scene);
+            if (rc != IL_EXIT_OK)
+                return rc;
+        }
+#undef VALUE
+    }
+    int rc = cli_require_scene("view", o->scene);
+    if (rc != IL_EXIT_OK)
+        return rc;
+    if ((rc = cli_env_check("view", &o->env)) != IL_EXIT_OK ||
+        (rc = cli_tonemap_check("view", &o->tm)) != IL_EXIT_OK)
+        return rc;
+    if (o->frames && !o->desc.spp) {
+        cli_error("view: --frames needs --spp (the image must be complete to be compared)");
+        return IL_EXIT_USAGE;
+    }
+    if (o->keys && !o->frames) {
+        cli_error("view: --keys needs --frames");
+        return IL_EXIT_USAGE;
+    }
+    if ((o->screenshot || o->look_screenshot) && !o->frames) {
+        cli_error("view: --screenshot and --look-screenshot need --frames");
+        return IL_EXIT_USAGE;
+    }
+    return IL_EXIT_OK;
+}
+
+static int apply_camera(il_scene *scene, const view_options *o)
+{
+    if (!(o->has_pos || o->has_target || o->has_up || o->has_fov))
+        return IL_EXIT_OK;
+    il_camera_desc cam;
+    il_scene_get_camera(scene, &cam);
+    if (o->has_pos)
+        cam.position = o->pos;
+    if (o->has_target)
+        cam.target = o->target;
+    if (o->has_up)
+        cam.up = o->up;
+    if (o->has_fov)
+        cam.fov_y = (float)o->fov;
+    il_error err = {0};
+    if (il_scene_set_camera(scene, &cam, &err) != IL_OK) {
+        cli_error("%s", err.message);
+        return IL_EXIT_BAD_INPUT;
+    }
+    return IL_EXIT_OK;
+}
+
+int cmd_view(int argc, char **argv)
+{
+    view_options o = {0};
+    int rc = parse_options(argc, argv, &o);
+    if (rc == -1)
+        return IL_EXIT_OK;
+    if (rc != IL_EXIT_OK)
+        return rc;
+    if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
+        return rc;
+#ifndef IL_HAVE_VIEWER
+    cli_error("view: this illum was built without the viewer (configure with -DIL_VIEWER=ON; "
+              "it needs GLFW 3 and libepoxy, see docs/viewer.md)");
+    return IL_EXIT_RUNTIME;
+#else
+    il_scene *scene = NULL;
+    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
+        return rc;
+    if ((rc = apply_camera(scene, &o)) != IL_EXIT_OK) {
+        il_scene_release(scene);
+        return rc;
+    }
+    il_render_settings rs;
+    if (il_scene_get_render_settings(scene, &rs)) {
+        if (!o.width) o.width = rs.width;
+        if (!o.height) o.height = rs.height;
+    }
+    o.desc.radiosity = &o.rad.desc;
+    o.desc.hr = &o.hr.desc;
+    o.desc.photon = &o.photon.desc;
+    o.desc.ibl = &o.ibl.desc;
+    o.desc.rsm = &o.rsm.desc;
+    o.desc.linespace = &o.linespace.desc;
+    il_viewer_options vo = {
+        .scene = scene, .scene_name = o.scene, .desc = o.desc,
+        .width = o.width ? o.width : 512, .height = o.height ? o.height : 512,
+        .exposure = (float)o.exposure, .op = o.tm.desc.op, .frames = o.frames,
+        .screenshot = o.screenshot, .look_screenshot = o.look_screenshot, .keys = o.keys,
+        .save_prefix = o.save ? o.save : "illum-view",
+        .quiet = o.quiet};
+    rc = il_viewer_run(&vo);
+    il_scene_release(scene);
+    return rc;
+#endif
+}
