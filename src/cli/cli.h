@@ -240,6 +240,23 @@ int cli_device_require_cuda(void);
 il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
                                  uint32_t height, il_image *out, il_render_stats *rs, il_error *err);
 
+/* The camera options of render and view (cli_camera.c): --camera-pos,
+ * --camera-target, --camera-up, --fov, --camera-file. */
+typedef struct cli_camera_options {
+    const char *file;                /* --camera-file: NULL when not given */
+    bool has_pos, has_target, has_up, has_fov;
+    il_vec3 pos, target, up;
+    double fov;                      /* vertical, degrees */
+} cli_camera_options;
+
+/* As cli_radiosity_option, for the five options above. */
+bool cli_camera_option(int argc, char **argv, int *i, cli_camera_options *o, int *rc);
+/* Fills what the command line left unset from the camera JSON file
+ * {"position":[..],"target":[..],"up":[..],"fov":deg}; IL_EXIT_OK without a file. */
+int cli_camera_read_file(cli_camera_options *o);
+/* Overrides the scene's camera with what was given (before rendering). */
+int cli_camera_apply(il_scene *scene, const cli_camera_options *o);
+
 int cmd_render(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);
 int cmd_info(int argc, char **argv);

@@ -64,16 +64,14 @@ typedef struct render_options {
     int num_outputs;
     const char *stats;
     double write_every;              /* --write-every seconds; 0: only at the end */
-    const char *camera_file;
     uint32_t width, height;
     il_render_desc desc;
     il_write_desc write;
     cli_tonemap_options tm;          /* --tonemap and the rest: PNG outputs */
     bool quiet;
     bool cuda;                       /* --device cuda */
-    bool has_pos, has_target, has_up, has_fov, has_seed;
-    il_vec3 cam_pos, cam_target, cam_up;
-    double fov;
+    bool has_seed;
+    cli_camera_options camera;       /* --camera-* and --fov */
     bool has_method;
     cli_radiosity_options rad;
     cli_hr_options hr;
@@ -162,71 +160,6 @@ static bool known_image_extension(const char *path)
            !strcasecmp(dot, ".png");
 }
 
-static bool read_vec3(const cJSON *obj, const char *key, il_vec3 *out, bool *has, const char *file)
-{
-    const cJSON *a = cJSON_GetObjectItemCaseSensitive(obj, key);
-    if (!a)
-        return true;
-    if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3) {
-        cli_error("%s: \"%s\" must be an array of three numbers", file, key);
-        return false;
-    }
-    float v[3];
-    for (int k = 0; k < 3; k++) {
-        const cJSON *e = cJSON_GetArrayItem(a, k);
-        if (!cJSON_IsNumber(e)) {
-            cli_error("%s: \"%s\" must be an array of three numbers", file, key);
-            return false;
-        }
-        v[k] = (float)e->valuedouble;
-    }
-    *out = (il_vec3){v[0], v[1], v[2]};
-    *has = true;
-    return true;
-}
-
-/* Fills the camera overrides from a camera JSON file (command-line options win). */
-static int read_camera_file(render_options *o)
-{
-    FILE *f = fopen(o->camera_file, "rb");
-    if (!f) {
-        cli_error("%s: cannot open the camera file", o->camera_file);
-        return IL_EXIT_BAD_INPUT;
-    }
-    char buf[65536];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    cJSON *root = cJSON_Parse(buf);
-    if (!root || !cJSON_IsObject(root)) {
-        cli_error("%s: not a JSON object", o->camera_file);
-        cJSON_Delete(root);
-        return IL_EXIT_BAD_INPUT;
-    }
-    render_options file = {0};
-    bool ok = read_vec3(root, "position", &file.cam_pos, &file.has_pos, o->camera_file) &&
-              read_vec3(root, "target", &file.cam_target, &file.has_target, o->camera_file) &&
-              read_vec3(root, "up", &file.cam_up, &file.has_up, o->camera_file);
-    const cJSON *fov = cJSON_GetObjectItemCaseSensitive(root, "fov");
-    if (ok && fov) {
-        if (!cJSON_IsNumber(fov)) {
-            cli_error("%s: \"fov\" must be a number", o->camera_file);
-            ok = false;
-        } else {
-            file.fov = fov->valuedouble;
-            file.has_fov = true;
-        }
-    }
-    cJSON_Delete(root);
-    if (!ok)
-        return IL_EXIT_BAD_INPUT;
-    if (!o->has_pos && file.has_pos) { o->cam_pos = file.cam_pos; o->has_pos = true; }
-    if (!o->has_target && file.has_target) { o->cam_target = file.cam_target; o->has_target = true; }
-    if (!o->has_up && file.has_up) { o->cam_up = file.cam_up; o->has_up = true; }
-    if (!o->has_fov && file.has_fov) { o->fov = file.fov; o->has_fov = true; }
-    return IL_EXIT_OK;
-}
-
 /* A method's own options need that method.  Without --method a JSON
  * scene's "render" block may still choose it, so cmd_render checks again
  * (final) once the scene is loaded. */
@@ -264,7 +197,8 @@ static int parse_options(int argc, char **argv, render_options *o)
                 return opt_rc;
             continue;
         }
-        if (cli_env_option(argc, argv, &i, &o->env, &opt_rc)) {
+        if (cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
+            cli_camera_option(argc, argv, &i, &o->camera, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -356,29 +290,6 @@ static int parse_options(int argc, char **argv, render_options *o)
                 cli_error("--filter: expected box or gaussian, got '%s'", v);
                 return IL_EXIT_BAD_INPUT;
             }
-        } else if (!strcmp(a, "--camera-pos")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->cam_pos))
-                return IL_EXIT_BAD_INPUT;
-            o->has_pos = true;
-        } else if (!strcmp(a, "--camera-target")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->cam_target))
-                return IL_EXIT_BAD_INPUT;
-            o->has_target = true;
-        } else if (!strcmp(a, "--camera-up")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->cam_up))
-                return IL_EXIT_BAD_INPUT;
-            o->has_up = true;
-        } else if (!strcmp(a, "--fov")) {
-            VALUE();
-            if (!cli_parse_double(a, v, 0.01, 179.0, &o->fov))
-                return IL_EXIT_BAD_INPUT;
-            o->has_fov = true;
-        } else if (!strcmp(a, "--camera-file")) {
-            VALUE();
-            o->camera_file = v;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             VALUE();
             if (o->num_outputs == MAX_OUTPUTS) {
@@ -463,28 +374,6 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     return IL_EXIT_OK;
 }
 
-static int apply_camera(il_scene *scene, const render_options *o)
-{
-    if (!(o->has_pos || o->has_target || o->has_up || o->has_fov))
-        return IL_EXIT_OK;
-    il_camera_desc cam;
-    il_scene_get_camera(scene, &cam);
-    if (o->has_pos)
-        cam.position = o->cam_pos;
-    if (o->has_target)
-        cam.target = o->cam_target;
-    if (o->has_up)
-        cam.up = o->cam_up;
-    if (o->has_fov)
-        cam.fov_y = (float)o->fov;
-    il_error err = {0};
-    if (il_scene_set_camera(scene, &cam, &err) != IL_OK) {
-        cli_error("%s", err.message);
-        return IL_EXIT_BAD_INPUT;
-    }
-    return IL_EXIT_OK;
-}
-
 static bool write_stats(const render_options *o, const il_render_stats *rs, const il_scene *scene,
                         double wall)
 {
@@ -542,7 +431,7 @@ int cmd_render(int argc, char **argv)
         return rc;
     if (cli_mpi_rank() > 0)
         o.quiet = true; /* under mpirun only rank 0 reports */
-    if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
+    if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK)
         return rc;
     char default_out[512];
     if (o.num_outputs == 0) {
@@ -562,7 +451,7 @@ int cmd_render(int argc, char **argv)
         o.width = 512;
     if (o.height == 0)
         o.height = 512;
-    if ((rc = apply_camera(scene, &o)) != IL_EXIT_OK) {
+    if ((rc = cli_camera_apply(scene, &o.camera)) != IL_EXIT_OK) {
         il_scene_release(scene);
         return rc;
     }

@@ -5,8 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <cjson/cJSON.h>
-
 #include "cli/cli.h"
 #ifdef IL_HAVE_VIEWER
 #include "viewer/viewer.h"
@@ -46,7 +44,7 @@ static const char *help =
     "that method is shown.\n";
 
 typedef struct view_options {
-    const char *scene, *camera_file, *screenshot, *look_screenshot, *save, *keys;
+    const char *scene, *screenshot, *look_screenshot, *save, *keys;
     il_render_desc desc;
     uint32_t width, height, frames;
     double exposure;
@@ -58,64 +56,9 @@ typedef struct view_options {
     cli_ibl_options ibl;
     cli_rsm_options rsm;
     cli_linespace_options linespace;
-    bool quiet, has_pos, has_target, has_up, has_fov;
-    il_vec3 pos, target, up;
-    double fov;
+    bool quiet;
+    cli_camera_options camera;       /* --camera-* and --fov */
 } view_options;
-
-static bool json_vec3(const cJSON *root, const char *key, il_vec3 *out, bool *has, const char *file)
-{
-    const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, key);
-    if (!a)
-        return true;
-    if (!cJSON_IsArray(a) || cJSON_GetArraySize(a) != 3) {
-        cli_error("%s: \"%s\" must be an array of three numbers", file, key);
-        return false;
-    }
-    float v[3];
-    for (int k = 0; k < 3; k++) {
-        const cJSON *e = cJSON_GetArrayItem(a, k);
-        if (!cJSON_IsNumber(e)) {
-            cli_error("%s: \"%s\" must be an array of three numbers", file, key);
-            return false;
-        }
-        v[k] = (float)e->valuedouble;
-    }
-    if (!*has)  /* command-line options win over the file */
-        *out = (il_vec3){v[0], v[1], v[2]};
-    *has = true;
-    return true;
-}
-
-static int read_camera_file(view_options *o)
-{
-    FILE *f = fopen(o->camera_file, "rb");
-    if (!f) {
-        cli_error("%s: cannot open the camera file", o->camera_file);
-        return IL_EXIT_BAD_INPUT;
-    }
-    char buf[65536];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    cJSON *root = cJSON_Parse(buf);
-    bool ok = root && cJSON_IsObject(root);
-    if (!ok)
-        cli_error("%s: not a JSON object", o->camera_file);
-    ok = ok && json_vec3(root, "position", &o->pos, &o->has_pos, o->camera_file) &&
-         json_vec3(root, "target", &o->target, &o->has_target, o->camera_file) &&
-         json_vec3(root, "up", &o->up, &o->has_up, o->camera_file);
-    const cJSON *fov = ok ? cJSON_GetObjectItemCaseSensitive(root, "fov") : NULL;
-    if (fov && !cJSON_IsNumber(fov)) {
-        cli_error("%s: \"fov\" must be a number", o->camera_file);
-        ok = false;
-    } else if (fov && !o->has_fov) {
-        o->fov = fov->valuedouble;
-        o->has_fov = true;
-    }
-    cJSON_Delete(root);
-    return ok ? IL_EXIT_OK : IL_EXIT_BAD_INPUT;
-}
 
 static int parse_options(int argc, char **argv, view_options *o)
 {
@@ -125,6 +68,7 @@ static int parse_options(int argc, char **argv, view_options *o)
         int opt_rc;
         if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
             cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
+            cli_camera_option(argc, argv, &i, &o->camera, &opt_rc) ||
             cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
             cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
             cli_photon_option(argc, argv, &i, &o->photon, &opt_rc) ||
@@ -176,29 +120,6 @@ static int parse_options(int argc, char **argv, view_options *o)
             if (!cli_parse_u32(a, v, 1, 4096, &t))
                 return IL_EXIT_BAD_INPUT;
             o->desc.threads = (int)t;
-        } else if (!strcmp(a, "--camera-pos")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->pos))
-                return IL_EXIT_BAD_INPUT;
-            o->has_pos = true;
-        } else if (!strcmp(a, "--camera-target")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->target))
-                return IL_EXIT_BAD_INPUT;
-            o->has_target = true;
-        } else if (!strcmp(a, "--camera-up")) {
-            VALUE();
-            if (!cli_parse_vec3(a, v, &o->up))
-                return IL_EXIT_BAD_INPUT;
-            o->has_up = true;
-        } else if (!strcmp(a, "--fov")) {
-            VALUE();
-            if (!cli_parse_double(a, v, 1.0, 179.0, &o->fov))
-                return IL_EXIT_BAD_INPUT;
-            o->has_fov = true;
-        } else if (!strcmp(a, "--camera-file")) {
-            VALUE();
-            o->camera_file = v;
         } else if (!strcmp(a, "--exposure")) {
             VALUE();
             if (!cli_parse_double(a, v, -64.0, 64.0, &o->exposure))
@@ -249,27 +170,6 @@ static int parse_options(int argc, char **argv, view_options *o)
     return IL_EXIT_OK;
 }
 
-static int apply_camera(il_scene *scene, const view_options *o)
-{
-    if (!(o->has_pos || o->has_target || o->has_up || o->has_fov))
-        return IL_EXIT_OK;
-    il_camera_desc cam;
-    il_scene_get_camera(scene, &cam);
-    if (o->has_pos)
-        cam.position = o->pos;
-    if (o->has_target)
-        cam.target = o->target;
-    if (o->has_up)
-        cam.up = o->up;
-    if (o->has_fov)
-        cam.fov_y = (float)o->fov;
-    il_error err = {0};
-    if (il_scene_set_camera(scene, &cam, &err) != IL_OK) {
-        cli_error("%s", err.message);
-        return IL_EXIT_BAD_INPUT;
-    }
-    return IL_EXIT_OK;
-}
 
 int cmd_view(int argc, char **argv)
 {
@@ -279,7 +179,7 @@ int cmd_view(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
-    if (o.camera_file && (rc = read_camera_file(&o)) != IL_EXIT_OK)
+    if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK)
         return rc;
 #ifndef IL_HAVE_VIEWER
     cli_error("view: this illum was built without the viewer (configure with -DIL_VIEWER=ON; "
@@ -289,7 +189,7 @@ int cmd_view(int argc, char **argv)
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
-    if ((rc = apply_camera(scene, &o)) != IL_EXIT_OK) {
+    if ((rc = cli_camera_apply(scene, &o.camera)) != IL_EXIT_OK) {
         il_scene_release(scene);
         return rc;
     }
