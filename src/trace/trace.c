@@ -176,11 +176,12 @@ bool il_trace_occluded(const il_tracer *t, const il_ray *ray)
 
 enum { STREAM_CHUNK = 256 };
 
-void il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n)
+static void closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n,
+                      enum RTCIntersectContextFlags flags)
 {
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    ctx.flags = flags;
     struct RTCRayHit rh[STREAM_CHUNK];
     for (size_t base = 0; base < n; base += STREAM_CHUNK) {
         unsigned m = (unsigned)((n - base) < STREAM_CHUNK ? (n - base) : STREAM_CHUNK);
@@ -193,6 +194,16 @@ void il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, si
         for (unsigned i = 0; i < m; i++)
             from_rtc_hit(&rh[i], &hits[base + i]);
     }
+}
+
+void il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n)
+{
+    closest_n(t, rays, hits, n, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT);
+}
+
+void il_trace_closest_n_coherent(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n)
+{
+    closest_n(t, rays, hits, n, RTC_INTERSECT_CONTEXT_FLAG_COHERENT);
 }
 
 void il_trace_occluded_n(const il_tracer *t, const il_ray *rays, bool *occluded, size_t n)

@@ -48,6 +48,10 @@ bool il_trace_occluded(const il_tracer *tracer, const il_ray *ray);
 /* Streams: n independent rays at once (Embree's rtcIntersect1M/rtcOccluded1M),
  * cheaper per ray for coherent batches. */
 void il_trace_closest_n(const il_tracer *tracer, const il_ray *rays, il_hit *hits, size_t n);
+/* The same for rays that start close together and point alike (camera rays
+ * of neighbouring pixels): Embree's coherent traversal order. */
+void il_trace_closest_n_coherent(const il_tracer *tracer, const il_ray *rays, il_hit *hits,
+                                 size_t n);
 void il_trace_occluded_n(const il_tracer *tracer, const il_ray *rays, bool *occluded, size_t n);
 
 /* The distance by which secondary rays leave a surface: scaled to the scene

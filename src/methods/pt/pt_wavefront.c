@@ -133,10 +133,13 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
     uint32_t num_active = n;
     for (uint32_t j = 0; j < n; j++)
         w->active[j] = j;
-    while (num_active > 0) {
+    for (bool camera = true; num_active > 0; camera = false) {
         for (uint32_t a = 0; a < num_active; a++)
             w->rays[a] = w->st[w->active[a]].ray;
-        il_trace_closest_n(tr, w->rays, w->hits, num_active);
+        if (camera) /* a tile's camera rays: neighbours, alike */
+            il_trace_closest_n_coherent(tr, w->rays, w->hits, num_active);
+        else
+            il_trace_closest_n(tr, w->rays, w->hits, num_active);
         wave_surfaces(pm, w, num_active);
         wave_samples(pm, w, num_active);
 
