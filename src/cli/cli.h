@@ -240,6 +240,22 @@ int cli_device_require_cuda(void);
 il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
                                  uint32_t height, il_image *out, il_render_stats *rs, il_error *err);
 
+/* Every method's own options together, as render and view take them
+ * (cli_method.c). */
+typedef struct cli_method_options {
+    cli_radiosity_options rad;
+    cli_hr_options hr;
+    cli_photon_options photon;
+    cli_ibl_options ibl;
+    cli_rsm_options rsm;
+    cli_linespace_options linespace;
+} cli_method_options;
+
+/* As cli_radiosity_option, for an option of any method. */
+bool cli_method_options_parse(int argc, char **argv, int *i, cli_method_options *m, int *rc);
+/* Points desc's per-method option pointers at m's descs. */
+void cli_method_options_install(cli_method_options *m, il_render_desc *desc);
+
 /* The camera options of render and view (cli_camera.c): --camera-pos,
  * --camera-target, --camera-up, --fov, --camera-file. */
 typedef struct cli_camera_options {

@@ -72,3 +72,23 @@ int cli_method_mismatch(const char *command, const cli_method_note *note, const 
               note->first, label, method, command, method);
     return IL_EXIT_USAGE;
 }
+
+bool cli_method_options_parse(int argc, char **argv, int *i, cli_method_options *m, int *rc)
+{
+    return cli_radiosity_option(argc, argv, i, &m->rad, rc) ||
+           cli_hr_option(argc, argv, i, &m->hr, rc) ||
+           cli_photon_option(argc, argv, i, &m->photon, rc) ||
+           cli_ibl_option(argc, argv, i, &m->ibl, rc) ||
+           cli_rsm_option(argc, argv, i, &m->rsm, rc) ||
+           cli_linespace_option(argc, argv, i, &m->linespace, rc);
+}
+
+void cli_method_options_install(cli_method_options *m, il_render_desc *desc)
+{
+    desc->radiosity = &m->rad.desc;
+    desc->hr = &m->hr.desc;
+    desc->photon = &m->photon.desc;
+    desc->ibl = &m->ibl.desc;
+    desc->rsm = &m->rsm.desc;
+    desc->linespace = &m->linespace.desc;
+}

@@ -73,12 +73,7 @@ typedef struct render_options {
     bool has_seed;
     cli_camera_options camera;       /* --camera-* and --fov */
     bool has_method;
-    cli_radiosity_options rad;
-    cli_hr_options hr;
-    cli_photon_options photon;
-    cli_ibl_options ibl;
-    cli_rsm_options rsm;
-    cli_linespace_options linespace;
+    cli_method_options m;            /* each method's own options */
     cli_env_options env;             /* --env and its settings */
 } render_options;
 
@@ -167,17 +162,17 @@ static int check_method_options(const render_options *o, bool final)
 {
     if (!o->has_method && !final)
         return IL_EXIT_OK;
-    if (o->rad.note.given && o->desc.method != IL_METHOD_RADIOSITY)
-        return cli_method_mismatch("render", &o->rad.note, "radiosity", "radiosity");
-    if (o->hr.note.given && o->desc.method != IL_METHOD_HR)
-        return cli_method_mismatch("render", &o->hr.note, "hierarchical radiosity", "hr");
-    if (o->ibl.note.given && o->desc.method != IL_METHOD_IBL)
-        return cli_method_mismatch("render", &o->ibl.note, "many-light environment", "ibl");
-    if (o->linespace.note.given && o->desc.method != IL_METHOD_LINESPACE)
-        return cli_method_mismatch("render", &o->linespace.note, "linespace", "linespace");
-    if (o->rsm.note.given && o->desc.method != IL_METHOD_RSM)
-        return cli_method_mismatch("render", &o->rsm.note, "reflective shadow map", "rsm");
-    return cli_photon_check_method("render", &o->photon, o->desc.method);
+    if (o->m.rad.note.given && o->desc.method != IL_METHOD_RADIOSITY)
+        return cli_method_mismatch("render", &o->m.rad.note, "radiosity", "radiosity");
+    if (o->m.hr.note.given && o->desc.method != IL_METHOD_HR)
+        return cli_method_mismatch("render", &o->m.hr.note, "hierarchical radiosity", "hr");
+    if (o->m.ibl.note.given && o->desc.method != IL_METHOD_IBL)
+        return cli_method_mismatch("render", &o->m.ibl.note, "many-light environment", "ibl");
+    if (o->m.linespace.note.given && o->desc.method != IL_METHOD_LINESPACE)
+        return cli_method_mismatch("render", &o->m.linespace.note, "linespace", "linespace");
+    if (o->m.rsm.note.given && o->desc.method != IL_METHOD_RSM)
+        return cli_method_mismatch("render", &o->m.rsm.note, "reflective shadow map", "rsm");
+    return cli_photon_check_method("render", &o->m.photon, o->desc.method);
 }
 
 static int parse_options(int argc, char **argv, render_options *o)
@@ -187,12 +182,7 @@ static int parse_options(int argc, char **argv, render_options *o)
         const char *v = NULL;
         int opt_rc;
         if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
-            cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
-            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
-            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc) ||
-            cli_ibl_option(argc, argv, &i, &o->ibl, &opt_rc) ||
-            cli_rsm_option(argc, argv, &i, &o->rsm, &opt_rc) ||
-            cli_linespace_option(argc, argv, &i, &o->linespace, &opt_rc)) {
+            cli_method_options_parse(argc, argv, &i, &o->m, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -407,11 +397,11 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
     else if (o->desc.method == IL_METHOD_PHOTON || o->desc.method == IL_METHOD_SPPM)
         cli_photon_stats_json(j, &rs->photon);
     else if (o->desc.method == IL_METHOD_IBL)
-        cli_ibl_stats_json(j, &o->ibl.desc, &rs->ibl);
+        cli_ibl_stats_json(j, &o->m.ibl.desc, &rs->ibl);
     else if (o->desc.method == IL_METHOD_LINESPACE)
         cli_linespace_stats_json(j, &rs->linespace);
     else if (o->desc.method == IL_METHOD_RSM)
-        cli_rsm_stats_json(j, &o->rsm.desc, &rs->rsm);
+        cli_rsm_stats_json(j, &o->m.rsm.desc, &rs->rsm);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;
@@ -471,14 +461,9 @@ int cmd_render(int argc, char **argv)
     if (o.desc.method == IL_METHOD_RADIOSITY) {
         /* The solve draws its own line and ends early on Ctrl-C; the camera
          * pass after it draws the usual bar. */
-        cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
-        o.desc.radiosity = &o.rad.desc;
+        cli_radiosity_install_progress(&o.m.rad, o.quiet, &interrupted);
     }
-    o.desc.hr = &o.hr.desc;
-    o.desc.photon = &o.photon.desc;
-    o.desc.ibl = &o.ibl.desc;
-    o.desc.rsm = &o.rsm.desc;
-    o.desc.linespace = &o.linespace.desc;
+    cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
     struct sigaction sa = {0}, old_sa;
     sa.sa_handler = on_sigint;
@@ -490,7 +475,7 @@ int cmd_render(int argc, char **argv)
                    : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &rs, !o.quiet, &err)
                                       : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
-    cli_radiosity_end_progress(&o.rad);
+    cli_radiosity_end_progress(&o.m.rad);
     if (ps.drawn)
         fputc('\n', stderr);
     if (cli_mpi_rank() > 0) { /* rank 0 writes the outputs and reports errors */
@@ -524,11 +509,11 @@ int cmd_render(int argc, char **argv)
         else if (o.desc.method == IL_METHOD_PHOTON || o.desc.method == IL_METHOD_SPPM)
             cli_photon_summary(o.desc.method, &rs.photon);
         else if (o.desc.method == IL_METHOD_IBL)
-            cli_ibl_summary(&o.ibl.desc, &rs.ibl);
+            cli_ibl_summary(&o.m.ibl.desc, &rs.ibl);
         else if (o.desc.method == IL_METHOD_LINESPACE)
             cli_linespace_summary(&rs.linespace);
         else if (o.desc.method == IL_METHOD_RSM)
-            cli_rsm_summary(&o.rsm.desc, &rs.rsm);
+            cli_rsm_summary(&o.m.rsm.desc, &rs.rsm);
         fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
                 rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);

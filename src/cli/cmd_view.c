@@ -50,12 +50,7 @@ typedef struct view_options {
     double exposure;
     cli_tonemap_options tm;
     cli_env_options env;
-    cli_radiosity_options rad;       /* each method's own options, as for render */
-    cli_hr_options hr;
-    cli_photon_options photon;
-    cli_ibl_options ibl;
-    cli_rsm_options rsm;
-    cli_linespace_options linespace;
+    cli_method_options m;            /* each method's own options, as for render */
     bool quiet;
     cli_camera_options camera;       /* --camera-* and --fov */
 } view_options;
@@ -69,12 +64,7 @@ static int parse_options(int argc, char **argv, view_options *o)
         if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
             cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
             cli_camera_option(argc, argv, &i, &o->camera, &opt_rc) ||
-            cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
-            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
-            cli_photon_option(argc, argv, &i, &o->photon, &opt_rc) ||
-            cli_ibl_option(argc, argv, &i, &o->ibl, &opt_rc) ||
-            cli_rsm_option(argc, argv, &i, &o->rsm, &opt_rc) ||
-            cli_linespace_option(argc, argv, &i, &o->linespace, &opt_rc)) {
+            cli_method_options_parse(argc, argv, &i, &o->m, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -198,12 +188,7 @@ int cmd_view(int argc, char **argv)
         if (!o.width) o.width = rs.width;
         if (!o.height) o.height = rs.height;
     }
-    o.desc.radiosity = &o.rad.desc;
-    o.desc.hr = &o.hr.desc;
-    o.desc.photon = &o.photon.desc;
-    o.desc.ibl = &o.ibl.desc;
-    o.desc.rsm = &o.rsm.desc;
-    o.desc.linespace = &o.linespace.desc;
+    cli_method_options_install(&o.m, &o.desc);
     il_viewer_options vo = {
         .scene = scene, .scene_name = o.scene, .desc = o.desc,
         .width = o.width ? o.width : 512, .height = o.height ? o.height : 512,
