@@ -174,3 +174,50 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], il_ligh
     }
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
 }
+
+/* The weight a photon (carrying power, importance transport) takes from a
+ * sampled BSDF direction.  bsdf.c samples for radiance: a refraction scales
+ * radiance by 1/eta^2 (pbrt-v4 9.5.2), which flux does not feel (pbrt-v4
+ * TransportMode::Importance leaves the factor out), so it is undone. */
+static il_vec3 flux_weight(const il_bsdf *b, il_vec3 wo, const il_bsdf_sample *bs)
+{
+    il_vec3 w = bs->weight;
+    if (b->type == IL_MATERIAL_DIELECTRIC) {
+        float co = v3_dot(wo, b->ng);
+        if (co * v3_dot(bs->wi, b->ng) < 0.0f) {
+            float eta = co > 0.0f ? b->ior : 1.0f / b->ior;
+            w = v3_scale(w, eta * eta);
+        }
+    }
+    return w;
+}
+
+bool il_light_path_scatter(const il_tracer *tr, const il_surface *surf, const il_bsdf *b,
+                           il_vec3 wo, il_pcg32 *rng, il_vec3 *power, il_ray *ray, bool *delta)
+{
+    float u_lobe = il_pcg32_float(rng);
+    il_vec2 u_dir;
+    u_dir.x = il_pcg32_float(rng);
+    u_dir.y = il_pcg32_float(rng);
+    float u_rr = il_pcg32_float(rng);
+
+    il_bsdf_sample bs;
+    if (!il_bsdf_sample_dir(b, wo, u_lobe, u_dir, &bs) || !il_sides_agree(surf, wo, bs.wi))
+        return false;
+    il_vec3 w = flux_weight(b, wo, &bs);
+    /* Russian roulette on the sampled reflectance (Jensen 2001, 5.2.1;
+     * pbrt-v3 16.2.2): survive with q = min(1, max_c w_c) and carry
+     * power * w / q, so a grey surface keeps the photon's power as it is. */
+    float q = il_minf(1.0f, v3_max_comp(w));
+    if (!(u_rr < q))
+        return false;
+    *power = v3_mul(*power, v3_scale(w, 1.0f / q));
+    if (v3_is_zero(*power) || !v3_is_finite(*power))
+        return false;
+    *delta = bs.delta;
+    ray->org = il_offset_origin(tr, surf->p, surf->ng, bs.wi);
+    ray->dir = bs.wi;
+    ray->tmin = 0.0f;
+    ray->tmax = INFINITY;
+    return true;
+}

@@ -1,13 +1,17 @@
-/* Emitting one light path (a photon) from the scene's lights
- * (light_emit.c): shared by photon mapping and Linespace light injection. */
+/* Emitting one light path (a photon) from the scene's lights and scattering
+ * it at a surface (light_emit.c): shared by photon mapping and Linespace
+ * light injection. */
 #ifndef IL_METHODS_LIGHT_EMIT_H
 #define IL_METHODS_LIGHT_EMIT_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "core/rng.h"
 #include "core/vec.h"
+#include "scene/bsdf.h"
 #include "scene/scene.h"
+#include "trace/trace.h"
 
 typedef struct il_light_emission {
     il_vec3 p;         /* the point sampled on the light (or on the disk of a
@@ -28,5 +32,13 @@ typedef struct il_light_emission {
  * on it with u[1], u[2] and a direction with u[3], u[4]; each u in [0,1).
  * False when the sample carries no power. */
 bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], il_light_emission *out);
+
+/* One bounce of a light path at surface surf with BSDF b, seen from wo:
+ * samples a direction with four numbers of rng (always drawn, so the
+ * stream stays aligned), applies Russian roulette and sets *power and *ray
+ * for the next segment; *delta says whether the bounce was specular.
+ * False when the path ends here (absorbed). */
+bool il_light_path_scatter(const il_tracer *tracer, const il_surface *surf, const il_bsdf *b,
+                           il_vec3 wo, il_pcg32 *rng, il_vec3 *power, il_ray *ray, bool *delta);
 
 #endif

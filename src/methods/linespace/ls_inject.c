@@ -123,21 +123,6 @@ static void deposit_segment(const il_linespace *ls, il_vec3 o, il_vec3 d, float 
     }
 }
 
-/* The photon's weight from a sampled direction (pm_trace.c): a refraction
- * scales radiance by 1/eta^2, which flux does not feel. */
-static il_vec3 flux_weight(const il_bsdf *b, il_vec3 wo, const il_bsdf_sample *bs)
-{
-    il_vec3 w = bs->weight;
-    if (b->type == IL_MATERIAL_DIELECTRIC) {
-        float co = v3_dot(wo, b->ng);
-        if (co * v3_dot(bs->wi, b->ng) < 0.0f) {
-            float eta = co > 0.0f ? b->ior : 1.0f / b->ior;
-            w = v3_scale(w, eta * eta);
-        }
-    }
-    return w;
-}
-
 static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth, uint64_t seed,
                        uint64_t index, chunk *c)
 {
@@ -167,26 +152,9 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
         il_vec3 wo = v3_neg(ray.dir);
         il_bsdf b;
         il_bsdf_init(&b, s, &surf);
-        float u_lobe = il_pcg32_float(&rng);
-        il_vec2 u_dir;
-        u_dir.x = il_pcg32_float(&rng);
-        u_dir.y = il_pcg32_float(&rng);
-        float u_rr = il_pcg32_float(&rng);
-        il_bsdf_sample bs;
-        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_dir, &bs) || !il_sides_agree(&surf, wo, bs.wi))
+        bool delta;
+        if (!il_light_path_scatter(tr, &surf, &b, wo, &rng, &power, &ray, &delta))
             break;
-        il_vec3 w = flux_weight(&b, wo, &bs);
-        /* Russian roulette on the sampled reflectance (Jensen 2001, 5.2.1). */
-        float q = il_minf(1.0f, v3_max_comp(w));
-        if (!(u_rr < q))
-            break;
-        power = v3_mul(power, v3_scale(w, 1.0f / q));
-        if (v3_is_zero(power) || !v3_is_finite(power))
-            break;
-        ray.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi);
-        ray.dir = bs.wi;
-        ray.tmin = 0.0f;
-        ray.tmax = INFINITY;
     }
 }
 

@@ -20,23 +20,6 @@
  * results never depend on the thread count. */
 #define IL_PM_CHUNK 4096u
 
-/* The weight a photon (carrying power, importance transport) takes from a
- * sampled BSDF direction.  bsdf.c samples for radiance: a refraction scales
- * radiance by 1/eta^2 (pbrt-v4 9.5.2), which flux does not feel (pbrt-v4
- * TransportMode::Importance leaves the factor out), so it is undone. */
-static il_vec3 photon_weight(const il_bsdf *b, il_vec3 wo, const il_bsdf_sample *bs)
-{
-    il_vec3 w = bs->weight;
-    if (b->type == IL_MATERIAL_DIELECTRIC) {
-        float co = v3_dot(wo, b->ng);
-        if (co * v3_dot(bs->wi, b->ng) < 0.0f) {
-            float eta = co > 0.0f ? b->ior : 1.0f / b->ior;
-            w = v3_scale(w, eta * eta);
-        }
-    }
-    return w;
-}
-
 static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t index, uint32_t max_depth,
                                  il_pm_deposit_fn deposit, void *user)
 {
@@ -77,31 +60,8 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
         if (bounces >= max_depth)
             break;
 
-        /* Four numbers per bounce, always drawn, so the stream stays aligned. */
-        float u_lobe = il_pcg32_float(&rng);
-        il_vec2 u_dir;
-        u_dir.x = il_pcg32_float(&rng);
-        u_dir.y = il_pcg32_float(&rng);
-        float u_rr = il_pcg32_float(&rng);
-
-        il_bsdf_sample bs;
-        if (!il_bsdf_sample_dir(&b, wo, u_lobe, u_dir, &bs) || !il_sides_agree(&surf, wo, bs.wi))
+        if (!il_light_path_scatter(tr, &surf, &b, wo, &rng, &power, &ray, &caustic))
             break;          /* absorbed */
-        il_vec3 w = photon_weight(&b, wo, &bs);
-        /* Russian roulette on the sampled reflectance (Jensen 2001, 5.2.1;
-         * pbrt-v3 16.2.2): survive with q = min(1, max_c w_c) and carry
-         * power * w / q, so a grey surface keeps the photon's power as it is. */
-        float q = il_minf(1.0f, v3_max_comp(w));
-        if (!(u_rr < q))
-            break;
-        power = v3_mul(power, v3_scale(w, 1.0f / q));
-        if (v3_is_zero(power) || !v3_is_finite(power))
-            break;
-        caustic = bs.delta;
-        ray.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi);
-        ray.dir = bs.wi;
-        ray.tmin = 0.0f;
-        ray.tmax = INFINITY;
     }
     return rays;
 }
