@@ -135,6 +135,21 @@ static bool hull_touches(const hull *h, const tri_local *t, float eps)
     return above < 8 && below < 8;
 }
 
+/* arr with room for at least `need` elements of size elem: doubled as
+ * often as needed (*cap updated); NULL when out of memory (arr kept). */
+static void *grow(void *arr, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return arr;
+    size_t c = *cap;
+    while (c < need)
+        c *= 2;
+    void *p = realloc(arr, c * elem);
+    if (p)
+        *cap = c;
+    return p;
+}
+
 static void voxel_pass(const il_linespace *ls, const il_scene *scene, const hull *hulls, uint32_t v,
                        voxel_tmp *out)
 {
@@ -176,29 +191,17 @@ static void voxel_pass(const il_linespace *ls, const il_scene *scene, const hull
                 overflow = true;
                 break;
             }
-            if (num + here + 1 > cap) {
-                cap *= 2;
-                uint16_t *p = realloc(out->cands, cap * sizeof(uint16_t));
-                if (!p) {
-                    out->oom = true;
-                    free(tl);
-                    return;
-                }
-                out->cands = p;
-            }
+            uint16_t *p = grow(out->cands, &cap, num + here + 1, sizeof *p);
+            if (!p)
+                goto oom;
+            out->cands = p;
             out->cands[num + here++] = (uint16_t)k;
         }
         if (overflow) {
-            if (num + 1 > cap) {
-                cap *= 2;
-                uint16_t *p = realloc(out->cands, cap * sizeof(uint16_t));
-                if (!p) {
-                    out->oom = true;
-                    free(tl);
-                    return;
-                }
-                out->cands = p;
-            }
+            uint16_t *p = grow(out->cands, &cap, num + 1, sizeof *p);
+            if (!p)
+                goto oom;
+            out->cands = p;
             out->cands[num] = IL_LS_OVERFLOW;
             here = 1;
         }
@@ -206,20 +209,18 @@ static void voxel_pass(const il_linespace *ls, const il_scene *scene, const hull
             continue;   /* no geometry in this shaft: nothing stored */
         num += here;
         out->mask[s / 64u] |= 1ull << (s % 64u);
-        if (stored == ends_cap) {
-            ends_cap *= 2;
-            uint32_t *p = realloc(out->ends, ends_cap * sizeof(uint32_t));
-            if (!p) {
-                out->oom = true;
-                free(tl);
-                return;
-            }
-            out->ends = p;
-        }
+        uint32_t *e = grow(out->ends, &ends_cap, (size_t)stored + 1, sizeof *e);
+        if (!e)
+            goto oom;
+        out->ends = e;
         out->ends[stored++] = num;
     }
     out->stored = stored;
     out->num_cands = num;
+    free(tl);
+    return;
+oom:
+    out->oom = true;
     free(tl);
 }
 
