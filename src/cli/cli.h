@@ -26,6 +26,8 @@ void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Parsers of option values; on failure they print which option and why and return false. */
 bool cli_parse_u32(const char *opt, const char *s, uint32_t min, uint32_t max, uint32_t *out);
 bool cli_parse_u64(const char *opt, const char *s, uint64_t *out);
+/* A count in [1, 10^10] (photons, light paths): "out of range" otherwise. */
+bool cli_parse_count(const char *opt, const char *s, uint64_t *out);
 bool cli_parse_double(const char *opt, const char *s, double min, double max, double *out);
 bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out);
 bool cli_parse_on_off(const char *opt, const char *s, bool *out); /* "on" or "off" */

@@ -21,6 +21,19 @@ void cli_error(const char *fmt, ...)
     va_end(ap);
 }
 
+bool cli_parse_count(const char *opt, const char *s, uint64_t *out)
+{
+    uint64_t n = 0;
+    if (!cli_parse_u64(opt, s, &n))
+        return false;
+    if (n < 1 || n > 10000000000ull) {
+        cli_error("%s: %s is out of range (1 to 10^10)", opt, s);
+        return false;
+    }
+    *out = n;
+    return true;
+}
+
 bool cli_parse_u32(const char *opt, const char *s, uint32_t min, uint32_t max, uint32_t *out)
 {
     char *end = NULL;

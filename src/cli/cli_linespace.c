@@ -54,17 +54,8 @@ static bool parse_value(const char *name, const char *v, il_linespace_desc *d)
         return cli_parse_u32(name, v, 1, 8, &d->n);
     if (!strcmp(name, "--inject-depth"))
         return cli_parse_u32(name, v, 1, 1024, &d->inject_depth);
-    if (!strcmp(name, "--inject-rays")) {
-        uint64_t n = 0;
-        if (!cli_parse_u64(name, v, &n))
-            return false;
-        if (n < 1 || n > 10000000000ull) {
-            cli_error("%s: %s is out of range (1 to 10^10)", name, v);
-            return false;
-        }
-        d->inject_rays = n;
-        return true;
-    }
+    if (!strcmp(name, "--inject-rays"))
+        return cli_parse_count(name, v, &d->inject_rays);
     if (!strcmp(name, "--blur")) {
         ok = cli_parse_double(name, v, 0.0, 4.0, &x);
         d->blur = (float)x;

@@ -47,17 +47,8 @@ static bool parse_value(const char *name, const char *v, il_photon_desc *d)
 {
     double x = 0.0;
     /* Zero means "the default" to the library, so the lower bounds are above 0. */
-    if (!strcmp(name, "--photons")) {
-        uint64_t n = 0;
-        if (!cli_parse_u64(name, v, &n))
-            return false;
-        if (n < 1 || n > 10000000000ull) {
-            cli_error("%s: %s is out of range (1 to 10^10)", name, v);
-            return false;
-        }
-        d->photons = n;
-        return true;
-    }
+    if (!strcmp(name, "--photons"))
+        return cli_parse_count(name, v, &d->photons);
     if (!strcmp(name, "--lookup")) {
         if (!strcmp(v, "kdtree"))
             d->lookup = IL_PHOTON_KDTREE;
