@@ -83,7 +83,7 @@ bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3])
         float x = (v3_get(p, i) - v3_get(ls->lo, i)) * v3_get(ls->inv_vsize, i);
         if (!(x >= -1e-3f && x <= (float)ls->res[i] + 1e-3f))
             return false;
-        int k = (int)floorf(x);
+        int k = (int)x; /* truncation: x >= -1e-3 here, and a negative k clamps to 0 */
         c[i] = (uint32_t)(k < 0 ? 0 : (k >= (int)ls->res[i] ? (int)ls->res[i] - 1 : k));
     }
     return true;

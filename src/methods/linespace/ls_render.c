@@ -29,6 +29,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "methods/camera_pass.h"
+#include "methods/camera_wave.h"
 #include "methods/linespace/ls.h"
 #include "scene/bsdf.h"
 #include "scene/direct.h"
@@ -44,6 +45,7 @@ typedef struct ls_method {
     const il_linespace *ls;
     il_ls_settings set;
     float blur_radius;             /* world units */
+    bool prefetch;                 /* il_wave_wants_prefetch */
     _Atomic uint64_t lookups, hits, empty, occluded;
 } ls_method;
 
@@ -61,103 +63,235 @@ static float lookup_probability(const ls_method *m, const il_bsdf *b)
     return (m->set.n2 - b->exponent) / (m->set.n2 - m->set.n1);
 }
 
-static il_vec3 radiance(const ls_method *m, il_vec3 org, il_vec3 dir, il_sampler *smp, uint64_t *rays,
-                        ls_counts *cnt)
+/* One camera path: what il_pt_state is to the path tracer.  A vertex's
+ * direct light waits for its shadow ray (traced by the caller, with the
+ * wave's others) and what the Linespace gave is added after it. */
+typedef struct ls_path {
+    il_vec3 L, beta;
+    il_ray ray;                    /* the next ray to trace */
+    bool specular;                 /* no non-delta bounce yet */
+    uint32_t depth;                /* scattering events before `ray` */
+    bool shadow, read;             /* pending: shadow_ray's light, read_L */
+    il_ray shadow_ray;
+    il_vec3 shadow_L, read_L;
+    uint64_t rays;
+} ls_path;
+
+static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
+{
+    p->L = v3s(0.0f);
+    p->beta = v3s(1.0f);
+    p->ray = (il_ray){.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
+    p->specular = true;
+    p->depth = 0;
+    p->shadow = p->read = false;
+    p->rays = 1;                   /* the camera ray */
+}
+
+/* The vertex where p->ray ended (hit NULL: it left the scene).  u: its four
+ * pairs, always drawn in this order (a fifth for the blur is drawn here
+ * when a lookup is made), and cos_dir the cosine warp of u[2].  Returns
+ * true when the path goes on along p->ray; either way the caller then
+ * resolves the vertex with path_finish_vertex. */
+static bool path_step(const ls_method *m, ls_path *p, const il_hit *hit, const il_surface *surf,
+                      const il_vec2 *u, const il_vec3 *cos_dir, il_sampler *smp, ls_counts *cnt)
 {
     const il_scene *s = m->scene;
-    const il_tracer *tr = s->tracer;
-    il_vec3 L = v3s(0.0f), beta = v3s(1.0f);
-    bool specular = true;
-    il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
-    for (uint32_t depth = 0;; depth++) {
-        il_hit hit;
-        (*rays)++;
-        if (!il_trace_closest(tr, &ray, &hit)) {
-            if (specular)
-                L = v3_add(L, v3_mul(beta, il_environment_radiance(s, ray.dir)));
-            break;
-        }
-        il_surface surf;
-        il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
-        il_vec3 wo = v3_neg(ray.dir);
-        const il_material *mat = surf.material;
-        if (specular && !v3_is_zero(mat->emission))
-            L = v3_add(L, v3_mul(beta, il_emitted_radiance(mat, surf.ng, wo)));
-        if (depth >= m->set.max_depth)
-            break;
-        il_bsdf b;
-        il_bsdf_init(&b, s, &surf);
-        /* Four pairs per vertex, always drawn in this order (a fifth for
-         * the blur, when a lookup is made). */
-        il_vec2 u[4];
-        il_sampler_2d_n(smp, u, 4);
-        il_bsdf_sample bs;
-        if (il_bsdf_is_delta(&b)) {
-            if (!il_bsdf_sample_dir(&b, wo, u[0].y, u[2], &bs) || !il_sides_agree(&surf, wo, bs.wi))
-                break;
-            beta = v3_mul(beta, bs.weight);
-            specular = true;
-        } else {
-            L = v3_add(L, v3_mul(beta, il_direct_light(s, &surf, &b, wo, u[0].x, u[1], rays)));
-            if (!il_bsdf_sample_dir(&b, wo, u[0].y, u[2], &bs) || !il_sides_agree(&surf, wo, bs.wi))
-                break;
-            il_vec3 next = v3_mul(beta, bs.weight);
-            if (u[3].x < lookup_probability(m, &b)) {
-                cnt->lookups++;
-                il_ls_lookup_status r;
-                il_vec3 Li = v3s(0.0f);
-                if (m->blur_radius > 0.0f) {
-                    bool occluded = m->set.occlusion_test &&
-                                    il_ls_occluded(m->ls, s, surf.p, bs.wi, surf.mesh, surf.prim);
-                    il_frame f = il_frame_from_normal(surf.ns);
-                    il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
-                    il_vec3 q = v3_fma(v3_fma(surf.p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
-                    r = occluded ? IL_LS_OCCLUDED : il_ls_lookup(m->ls, q, bs.wi, &Li);
-                } else {
-                    r = il_ls_read(m->ls, s, surf.p, bs.wi, m->set.occlusion_test, surf.mesh, surf.prim, &Li);
-                }
-                if (r == IL_LS_FOUND) {
-                    cnt->hits++;
-                    L = v3_add(L, v3_mul(next, Li));
-                    break;
-                }
-                if (r == IL_LS_OCCLUDED)
-                    cnt->occluded++;
-                else
-                    cnt->empty++;
-                if (!m->set.fallback)
-                    break;
-            }
-            beta = next;
-            specular = false;
-        }
-        if (v3_is_zero(beta) || !v3_is_finite(beta))
-            break;
-        ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f, .dir = bs.wi,
-                       .tmax = INFINITY};
-        /* Russian roulette after the third vertex (pbrt-v4 13.4.4). */
-        if (depth >= 3) {
-            float q = il_minf(v3_max_comp(beta), 0.95f);
-            if (!(u[3].y < q))
-                break;
-            beta = v3_scale(beta, 1.0f / q);
-        }
+    p->shadow = p->read = false;
+    if (!hit) {
+        if (p->specular)
+            p->L = v3_add(p->L, v3_mul(p->beta, il_environment_radiance(s, p->ray.dir)));
+        return false;
     }
-    return L;
+    il_vec3 wo = v3_neg(p->ray.dir);
+    const il_material *mat = surf->material;
+    if (p->specular && !v3_is_zero(mat->emission))
+        p->L = v3_add(p->L, v3_mul(p->beta, il_emitted_radiance(mat, surf->ng, wo)));
+    if (p->depth >= m->set.max_depth)
+        return false;
+    il_bsdf b;
+    il_bsdf_init(&b, s, surf);
+    il_bsdf_sample bs;
+    if (il_bsdf_is_delta(&b)) {
+        if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
+            !il_sides_agree(surf, wo, bs.wi))
+            return false;
+        p->beta = v3_mul(p->beta, bs.weight);
+        p->specular = true;
+    } else {
+        il_vec3 unblocked;
+        if (il_direct_light_sample(s, surf, &b, wo, u[0].x, u[1], &p->shadow_ray, &unblocked)) {
+            p->shadow = true;
+            p->shadow_L = v3_mul(p->beta, unblocked);
+            p->rays++;
+        }
+        if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
+            !il_sides_agree(surf, wo, bs.wi))
+            return false;
+        il_vec3 next = v3_mul(p->beta, bs.weight);
+        if (u[3].x < lookup_probability(m, &b)) {
+            cnt->lookups++;
+            il_ls_lookup_status r;
+            il_vec3 Li = v3s(0.0f);
+            if (m->blur_radius > 0.0f) {
+                bool occluded = m->set.occlusion_test &&
+                                il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim);
+                il_frame f = il_frame_from_normal(surf->ns);
+                il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
+                il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
+                r = occluded ? IL_LS_OCCLUDED : il_ls_lookup(m->ls, q, bs.wi, &Li);
+            } else {
+                r = il_ls_read(m->ls, s, surf->p, bs.wi, m->set.occlusion_test, surf->mesh, surf->prim, &Li);
+            }
+            if (r == IL_LS_FOUND) {
+                cnt->hits++;
+                p->read = true;
+                p->read_L = v3_mul(next, Li);
+                return false;
+            }
+            if (r == IL_LS_OCCLUDED)
+                cnt->occluded++;
+            else
+                cnt->empty++;
+            if (!m->set.fallback)
+                return false;
+        }
+        p->beta = next;
+        p->specular = false;
+    }
+    if (v3_is_zero(p->beta) || !v3_is_finite(p->beta))
+        return false;
+    p->ray = (il_ray){.org = il_offset_origin(s->tracer, surf->p, surf->ng, bs.wi), .tmin = 0.0f,
+                      .dir = bs.wi, .tmax = INFINITY};
+    /* Russian roulette after the third vertex (pbrt-v4 13.4.4). */
+    if (p->depth >= 3) {
+        float q = il_minf(v3_max_comp(p->beta), 0.95f);
+        if (!(u[3].y < q))
+            return false;
+        p->beta = v3_scale(p->beta, 1.0f / q);
+    }
+    p->depth++;
+    p->rays++;                     /* the next ray */
+    return true;
+}
+
+/* Adds the vertex's direct light (unless its shadow ray was blocked), then
+ * what it read from the Linespace. */
+static void path_finish_vertex(ls_path *p, bool occluded)
+{
+    if (p->shadow && !occluded)
+        p->L = v3_add(p->L, p->shadow_L);
+    if (p->read)
+        p->L = v3_add(p->L, p->read_L);
+    p->shadow = p->read = false;
+}
+
+/* Paths advanced together: one 16x16 tile at one sample per pixel. */
+#define LS_WAVE 256u
+#define LS_PAIRS 4u
+
+/* One wave of camera paths, advanced a vertex at a time with every
+ * vertex's rays traced as one stream (the path tracer's wavefront,
+ * methods/pt/pt_wavefront.c): the sampler draws, the surfaces and the
+ * cosine warps of all paths are computed together.  Each path is the
+ * same estimator as a path taken alone, with the same numbers.  Arrays
+ * indexed by path are [j], by position in the active list [a]. */
+typedef struct ls_wave {
+    ls_path path[LS_WAVE];
+    il_sampler smp[LS_WAVE];
+    uint32_t px[LS_WAVE], py[LS_WAVE];
+    uint32_t active[LS_WAVE], stepped[LS_WAVE], drawing[LS_WAVE], shadowed[LS_WAVE];
+    bool occluded[LS_WAVE];        /* [j] */
+    bool blocked[LS_WAVE];         /* [k]: the shadow stream's answers */
+    il_ray rays[LS_WAVE];
+    il_hit hits[LS_WAVE];          /* [a] */
+    il_surface surf[LS_WAVE];      /* [a] */
+    uint32_t slot[LS_WAVE];        /* [j]: its row of u, for the drawing paths */
+    il_vec2 u[LS_WAVE * LS_PAIRS];
+    il_vec2 u_cos[LS_WAVE];
+    il_vec3 cos_dir[LS_WAVE];
+} ls_wave;
+
+static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, ls_counts *cnt)
+{
+    const il_tracer *tr = m->scene->tracer;
+    uint32_t num_active = n;
+    for (uint32_t j = 0; j < n; j++)
+        w->active[j] = j;
+    for (bool camera = true; num_active > 0; camera = false) {
+        for (uint32_t a = 0; a < num_active; a++) {
+            w->stepped[a] = w->active[a];
+            w->rays[a] = w->path[w->active[a]].ray;
+        }
+        if (camera)
+            il_trace_closest_n_coherent(tr, w->rays, w->hits, num_active);
+        else
+            il_trace_closest_n(tr, w->rays, w->hits, num_active);
+        il_wave_surfaces(m->scene, w->hits, num_active, prefetch, w->surf);
+
+        /* The four pairs of every path that draws at this vertex, and the
+         * cosine warps of their BSDF pairs, together. */
+        uint32_t num_drawing = 0;
+        for (uint32_t a = 0; a < num_active; a++) {
+            uint32_t j = w->active[a];
+            if (w->hits[a].mesh != IL_HIT_NONE && w->path[j].depth < m->set.max_depth) {
+                w->slot[j] = num_drawing;
+                w->drawing[num_drawing++] = j;
+            }
+        }
+        il_sampler_2d_gather(w->smp, w->drawing, num_drawing, LS_PAIRS, w->u);
+        for (uint32_t k = 0; k < num_drawing; k++)
+            w->u_cos[k] = w->u[k * LS_PAIRS + 2];
+        il_sample_cosine_hemisphere_n(w->u_cos, w->cos_dir, num_drawing);
+
+        uint32_t num_shadow = 0, still = 0;
+        for (uint32_t a = 0; a < num_active; a++) {
+            uint32_t j = w->active[a];
+            ls_path *p = &w->path[j];
+            bool hit = w->hits[a].mesh != IL_HIT_NONE;
+            bool drawing = hit && p->depth < m->set.max_depth;
+            uint32_t k = drawing ? w->slot[j] : 0;
+            bool more = path_step(m, p, hit ? &w->hits[a] : NULL, &w->surf[a],
+                                  drawing ? &w->u[k * LS_PAIRS] : NULL,
+                                  drawing ? &w->cos_dir[k] : NULL, &w->smp[j], cnt);
+            w->occluded[j] = false;
+            if (p->shadow) {
+                w->shadowed[num_shadow] = j;
+                w->rays[num_shadow++] = p->shadow_ray;
+            }
+            if (more) /* compaction in place: `still` never passes `a` */
+                w->active[still++] = j;
+        }
+        if (num_shadow > 0) {
+            il_trace_occluded_n(tr, w->rays, w->blocked, num_shadow);
+            for (uint32_t k = 0; k < num_shadow; k++)
+                w->occluded[w->shadowed[k]] = w->blocked[k];
+        }
+        for (uint32_t a = 0; a < num_active; a++)
+            path_finish_vertex(&w->path[w->stepped[a]], w->occluded[w->stepped[a]]);
+        num_active = still;
+    }
 }
 
 static void ls_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
     ls_method *m = (ls_method *)method;
+    ls_wave *w = tile->scratch;
     ls_counts cnt = {0};
-    for (uint32_t y = tile->y0; y < tile->y1; y++)
-        for (uint32_t x = tile->x0; x < tile->x1; x++)
-            for (uint32_t i = tile->first; i < tile->first + tile->count; i++) {
-                il_sampler smp;
-                il_vec3 dir = il_camera_sample(ctx, x, y, i, &smp);
-                il_vec3 L = radiance(m, ctx->cam.position, dir, &smp, &tile->rays, &cnt);
-                il_camera_tile_add(ctx, tile, x, y, L);
-            }
+    il_camera_wave_cursor cur = il_camera_wave_begin(tile);
+    for (;;) {
+        uint32_t n = il_camera_wave_fill(ctx, tile, &cur, LS_WAVE, w->smp, w->px, w->py, w->drawing,
+                                         w->u, w->cos_dir);
+        if (n == 0)
+            break;
+        for (uint32_t j = 0; j < n; j++)
+            path_begin(&w->path[j], ctx->cam.position, w->cos_dir[j]);
+        run_wave(m, w, n, m->prefetch, &cnt);
+        for (uint32_t j = 0; j < n; j++) {
+            tile->rays += w->path[j].rays;
+            il_camera_tile_add(ctx, tile, w->px[j], w->py[j], w->path[j].L);
+        }
+    }
     atomic_fetch_add(&m->lookups, cnt.lookups);
     atomic_fetch_add(&m->hits, cnt.hits);
     atomic_fetch_add(&m->empty, cnt.empty);
@@ -211,9 +345,10 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     m->scene = scene;
     m->ls = &ls;
     m->set = set;
+    m->prefetch = il_wave_wants_prefetch(scene);
     m->blur_radius = set.blur * il_minf(ls.vsize.x, il_minf(ls.vsize.y, ls.vsize.z));
     il_camera_pass_result r = {0};
-    s = il_camera_pass_tiles(scene, film, desc, ls_tile, m, 0, &r, err);
+    s = il_camera_pass_tiles(scene, film, desc, ls_tile, m, sizeof(ls_wave), &r, err);
     st->seconds_sample = omp_get_wtime() - t2;
     st->lookups = atomic_load(&m->lookups);
     st->lookup_hits = atomic_load(&m->hits);

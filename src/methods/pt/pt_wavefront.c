@@ -16,6 +16,7 @@
  * il_camera_pass with il_pt_radiance, and the same with 1 or N threads. */
 #include "core/sampling.h"
 #include "methods/camera_pass.h"
+#include "methods/camera_wave.h"
 #include "methods/pt/pt.h"
 
 /* Paths advanced together: one 16x16 tile at one sample per pixel. */
@@ -25,13 +26,8 @@ typedef struct pt_method {
     const il_scene *scene;
     uint32_t max_depth;
     il_pt_strategy strategy;
-    bool prefetch;         /* the triangle records outgrow the caches (see wave_surfaces) */
+    bool prefetch;         /* the triangle records outgrow the caches (il_wave_wants_prefetch) */
 } pt_method;
-
-/* Above this many bytes of triangle records (il_tri_geom) the surface reads
- * miss the caches and wave_surfaces prefetches them; below, the prefetch
- * passes would only cost time. */
-#define PT_PREFETCH_BYTES (512u * 1024u)
 
 /* One wave: up to PT_WAVE paths with their samplers and pixels, the gather
  * buffers for the stream calls, and what is computed for all paths of a
@@ -54,41 +50,6 @@ typedef struct pt_wave {
     il_vec2 u_cos[PT_WAVE];        /* the BSDF pairs, warped together */
     il_vec3 cos_dir[PT_WAVE];
 } pt_wave;
-
-/* The surfaces of the wave's hits.  A big scene's triangle records and
- * vertex normals are mostly not in the cache when the hits come back from
- * Embree; touching them for all hits first (the records, then the vertices
- * the records name) lets the memory system fetch them in parallel instead
- * of one miss after the other inside il_scene_surface. */
-static void wave_surfaces(const pt_method *pm, pt_wave *w, uint32_t num)
-{
-    const il_scene *s = pm->scene;
-    for (uint32_t a = 0; a < num && pm->prefetch; a++) {
-        const il_hit *h = &w->hits[a];
-        if (h->mesh != IL_HIT_NONE && s->meshes[h->mesh].geom)
-            __builtin_prefetch(&s->meshes[h->mesh].geom[h->prim]);
-    }
-    for (uint32_t a = 0; a < num && pm->prefetch; a++) {
-        const il_hit *h = &w->hits[a];
-        if (h->mesh == IL_HIT_NONE)
-            continue;
-        const il_mesh *m = &s->meshes[h->mesh];
-        if (!m->geom)
-            continue;
-        const uint32_t *v = m->geom[h->prim].v;
-        for (int k = 0; k < 3; k++) {
-            if (m->normals)
-                __builtin_prefetch(&m->normals[v[k]]);
-            if (m->uvs)
-                __builtin_prefetch(&m->uvs[v[k]]);
-        }
-    }
-    for (uint32_t a = 0; a < num; a++) {
-        const il_hit *h = &w->hits[a];
-        if (h->mesh != IL_HIT_NONE)
-            il_scene_surface(s, h->mesh, h->prim, h->b1, h->b2, &w->surf[a]);
-    }
-}
 
 /* The samples of every path that draws them at this vertex (a hit below
  * the maximum depth: see il_pt_step), all drawn together: three pairs, and
@@ -140,7 +101,7 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
             il_trace_closest_n_coherent(tr, w->rays, w->hits, num_active);
         else
             il_trace_closest_n(tr, w->rays, w->hits, num_active);
-        wave_surfaces(pm, w, num_active);
+        il_wave_surfaces(pm->scene, w->hits, num_active, pm->prefetch, w->surf);
         wave_samples(pm, w, num_active);
 
         uint32_t num_shadow = 0, still = 0;
@@ -169,36 +130,20 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
 }
 
 /* The tile's samples in waves taken in the order the camera pass wants them
- * (pixel by pixel, samples in increasing index), and added to the film in
- * that order.  The samplers of a wave are started first and their first
- * pairs (the pixel jitter, as il_camera_sample draws it) drawn together. */
+ * (pixel by pixel, samples in increasing index: il_camera_wave_fill), and
+ * added to the film in that order. */
 static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
     const pt_method *pm = method;
     pt_wave *w = tile->scratch;
-    uint32_t first = tile->first, end = tile->first + tile->count;
-    uint32_t x = tile->x0, y = tile->y0, i = first;
-    while (y < tile->y1) {
-        /* Fill a wave. */
-        uint32_t n = 0;
-        while (n < PT_WAVE && y < tile->y1) {
-            il_sampler_start(&w->smp[n], ctx->sampler, ctx->seed, (uint64_t)y * ctx->width + x, i);
-            w->px[n] = x;
-            w->py[n] = y;
-            w->list[0][n] = n;
-            n++;
-            if (++i == end) {
-                i = first;
-                if (++x == tile->x1) {
-                    x = tile->x0;
-                    y++;
-                }
-            }
-        }
-        il_sampler_2d_gather(w->smp, w->list[0], n, 1, w->u);
+    il_camera_wave_cursor cur = il_camera_wave_begin(tile);
+    for (;;) {
+        uint32_t n = il_camera_wave_fill(ctx, tile, &cur, PT_WAVE, w->smp, w->px, w->py, w->list[0],
+                                         w->u, w->cos_dir);
+        if (n == 0)
+            break;
         for (uint32_t j = 0; j < n; j++)
-            il_pt_begin(&w->st[j], ctx->cam.position,
-                        il_camera_sample_dir(ctx, w->px[j], w->py[j], w->u[j]));
+            il_pt_begin(&w->st[j], ctx->cam.position, w->cos_dir[j]);
         run_wave(pm, w, n);
         for (uint32_t j = 0; j < n; j++) {
             tile->rays += w->st[j].rays;
@@ -211,11 +156,8 @@ il_status il_pt_wavefront_pass(const il_scene *scene, il_film *film, const il_re
                                uint32_t max_depth, il_pt_strategy strategy,
                                il_camera_pass_result *out, il_error *err)
 {
-    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy};
-    uint64_t triangles = 0;
-    for (uint32_t i = 0; i < scene->num_meshes; i++)
-        triangles += scene->meshes[i].num_triangles;
-    pm.prefetch = triangles * sizeof(il_tri_geom) > PT_PREFETCH_BYTES;
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy,
+                    .prefetch = il_wave_wants_prefetch(scene)};
     return il_camera_pass_tiles(scene, film, desc, render_tile, &pm, sizeof(pt_wave), out, err);
 }
 
@@ -226,10 +168,7 @@ size_t il_pt_wavefront_scratch_bytes(void) { return sizeof(pt_wave); }
 void il_pt_wavefront_tile(const il_scene *scene, uint32_t max_depth, il_pt_strategy strategy,
                           const il_camera_pass_ctx *ctx, il_camera_tile *tile)
 {
-    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy};
-    uint64_t triangles = 0;
-    for (uint32_t i = 0; i < scene->num_meshes; i++)
-        triangles += scene->meshes[i].num_triangles;
-    pm.prefetch = triangles * sizeof(il_tri_geom) > PT_PREFETCH_BYTES;
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy,
+                    .prefetch = il_wave_wants_prefetch(scene)};
     render_tile(&pm, ctx, tile);
 }
