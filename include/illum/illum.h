@@ -626,6 +626,32 @@ typedef struct il_linespace_stats {
     double seconds_sample;     /* the camera pass */
 } il_linespace_stats;
 
+/* ------------------------------------------------- distributed rendering */
+
+/* One render split across processes (docs/distributed.md; the CLI's
+ * `mpirun -np N illum render` implements this with MPI).  Every process
+ * loads the same scene and calls il_render with the same options and a
+ * distrib naming its own rank; IL_METHOD_PHOTON, IL_METHOD_SPPM and
+ * IL_METHOD_RADIOSITY then split their work (photon index ranges, kd-tree
+ * subtrees, image tiles or pixel rows, form-factor rows) and exchange
+ * results through `allgather`, which every process calls the same number
+ * of times in the same order.  The film each process gets back is its share: the films of
+ * all processes summed (il_film_data) are il_render's single-process film
+ * bit for bit.  il_render_stats.rays, nonfinite_samples, photon.photon_rays
+ * and radiosity.rows_computed count this process's work only.  Progress
+ * and on_step callbacks are not called (a process that stopped alone would
+ * leave the others waiting) and a time limit is IL_ERR_INVALID.  Other
+ * methods ignore distrib.  NULL (or size 1): a single process. */
+typedef struct il_distrib {
+    int rank, size;            /* 0 <= rank < size */
+    /* Concatenates every process's `bytes` bytes in rank order into *out
+     * (malloc'd, the library frees it; NULL when all sent nothing) and sets
+     * counts[r] (size entries) to process r's bytes.  Returns 0 on success;
+     * non-zero fails the render. */
+    int (*allgather)(void *user, const void *data, size_t bytes, void **out, size_t *counts);
+    void *user;
+} il_distrib;
+
 typedef struct il_render_desc {
     il_method method;
     uint32_t spp;            /* samples per pixel; 0 means 16, or unlimited when
@@ -647,6 +673,7 @@ typedef struct il_render_desc {
     const il_ibl_desc *ibl;  /* IL_METHOD_IBL options; NULL: defaults */
     const il_rsm_desc *rsm;  /* IL_METHOD_RSM options; NULL: defaults */
     const il_linespace_desc *linespace; /* IL_METHOD_LINESPACE options; NULL: defaults */
+    const il_distrib *distrib; /* one render across processes (see il_distrib); NULL: this one */
 } il_render_desc;
 
 typedef struct il_render_stats {

@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/mpi/mpi_methods.h"
 #include "core/error.h"
 
 #define TILE 16
@@ -254,9 +255,8 @@ il_status cli_mpi_render(const il_scene *scene, il_film *film, const il_render_d
                            who, v - NOT_RENDERING);
     }
     /* The same options on every rank: these fail everywhere or nowhere. */
-    if (desc->method != IL_METHOD_PT)
-        return il_fail(err, IL_ERR_INVALID,
-                       "distributed rendering (mpirun) supports --method pt only so far");
+    if (desc->method != IL_METHOD_PT) /* photon, sppm, radiosity: mpi_methods.c */
+        return cli_mpi_render_method(scene, film, desc, stats, verbose, err);
     if (desc->time_limit > 0.0)
         return il_fail(err, IL_ERR_INVALID,
                        "distributed rendering (mpirun) renders a sample count: use --spp, not --time");

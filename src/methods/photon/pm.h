@@ -28,6 +28,7 @@
 #include "core/sampler.h"
 #include "core/vec.h"
 #include "illum/illum.h"
+#include "methods/camera_pass.h"
 #include "scene/bsdf.h"
 #include "scene/scene.h"
 #include "trace/trace.h"
@@ -92,6 +93,12 @@ typedef struct il_pm_map {
  * is valid: every query finds nothing. */
 il_status il_pm_map_build(il_pm_map *map, il_photon *photons, size_t count, float power_scale,
                           il_photon_lookup lookup, float radius, il_error *err);
+/* il_pm_map_build with a kd-tree's build split across the processes of d
+ * (pm_kdtree.c; every process passes the same photons and gets the same
+ * map); the grid is built on every process.  d off: il_pm_map_build. */
+il_status il_pm_map_build_split(il_pm_map *map, il_photon *photons, size_t count, float power_scale,
+                                il_photon_lookup lookup, float radius, const il_distrib *d,
+                                il_error *err);
 void il_pm_map_free(il_pm_map *map);
 /* Bytes held by the photons and the structure. */
 size_t il_pm_map_bytes(const il_pm_map *map);
@@ -257,6 +264,27 @@ typedef struct il_pm_settings {
 } il_pm_settings;
 il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d, uint32_t max_depth,
                                  bool sppm, il_pm_settings *out, il_error *err);
+
+/* ------------------------------------- split across processes (pm_distrib.c) */
+
+/* il_pm_trace when d is off; otherwise this process traces its part of the
+ * index range and the parts are exchanged: every process gets the arrays
+ * il_pm_trace gives for the whole range, byte for byte (out->rays counts
+ * this process's rays only). */
+il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
+                            const il_distrib *d, il_pm_photons *out, il_error *err);
+/* The camera pass of desc->spp samples (no time limit, no progress) on
+ * this process's tiles (tile t of the camera pass's 16x16 tiles on process
+ * t mod size), all samples of a tile at once; the film is cleared first and
+ * the other tiles stay zero.  desc->distrib must be on. */
+il_status il_pm_camera_pass_split(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                                  il_camera_tile_fn tile, const void *method,
+                                  il_camera_pass_result *out, il_error *err);
+/* il_pm_irradiance_build with the points split across the processes of d
+ * (contiguous ranges) and exchanged: the same map->irr on every process,
+ * byte for byte, as il_pm_irradiance_build's.  d off: il_pm_irradiance_build. */
+il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
+                                       int threads, const il_distrib *d, il_error *err);
 
 il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
                        il_render_stats *stats, il_error *err);

@@ -120,6 +120,12 @@ void il_pm_permute(il_photon *photons, uint32_t *dest, size_t n);
 
 /* Reorders the photons into a left-balanced kd-tree in heap order. */
 il_status il_pm_kd_build(il_photon *photons, size_t n, il_error *err);
+/* il_pm_kd_build split across the processes of d (every process holds the
+ * same photons): the top levels' splits on every process, the subtrees
+ * below them built by one process each and exchanged; the same tree, byte
+ * for byte.  Maps under IL_PM_KD_SPLIT_MIN photons, or d off: il_pm_kd_build. */
+#define IL_PM_KD_SPLIT_MIN 16384u
+il_status il_pm_kd_build_split(il_photon *photons, size_t n, const il_distrib *d, il_error *err);
 uint32_t il_pm_kd_knn(const il_photon *photons, size_t n, il_vec3 p, uint32_t k, float max_d2,
                       il_pm_neighbour *out, float *r2);
 bool il_pm_kd_range(const il_photon *photons, size_t n, il_vec3 p, float d2, il_pm_buffer *out);

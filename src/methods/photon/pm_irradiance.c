@@ -12,10 +12,47 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/photon/pm_internal.h"
+
+/* The points [lo, hi) of the map's every stride-th photon into irr[0..hi-lo). */
+static il_status estimate_points(const il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
+                                 int threads, size_t lo, size_t hi, il_photon *irr, il_error *err)
+{
+    atomic_int oom = 0;
+    /* Each point's estimate depends only on the map, so the values are the
+     * same for any thread count and schedule. */
+#pragma omp parallel num_threads(threads) if (hi - lo >= 1024)
+    {
+        il_pm_scratch scratch = {0};
+#pragma omp for schedule(dynamic, 256)
+        for (int64_t i = (int64_t)lo; i < (int64_t)hi; i++) {
+            const il_photon *ph = &map->photons[(size_t)i * stride];
+            il_vec3 n = il_photon_normal(ph);
+            il_vec3 E = v3s(0.0f);
+            if (il_pm_irradiance_estimate(map, q, il_photon_pos(ph), n, &scratch, &E, NULL) != IL_OK)
+                atomic_store(&oom, 1);
+            il_photon *o = &irr[(size_t)i - lo];
+            memcpy(o->p, ph->p, sizeof o->p);
+            o->power = il_rgbe_pack(E);
+            o->dir = 0;
+            o->normal = (uint16_t)(ph->normal & IL_PM_NORMAL_MASK);
+        }
+        il_pm_scratch_free(&scratch);
+    }
+    if (atomic_load(&oom))
+        return il_fail(err, IL_ERR_MEMORY, "photon map: out of memory precomputing irradiance");
+    return IL_OK;
+}
 
 il_status il_pm_irradiance_build(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
                                  int threads, il_error *err)
+{
+    return il_pm_irradiance_build_split(map, q, stride, threads, NULL, err);
+}
+
+il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
+                                       int threads, const il_distrib *d, il_error *err)
 {
     free(map->irr);
     map->irr = NULL;
@@ -27,33 +64,44 @@ il_status il_pm_irradiance_build(il_pm_map *map, const il_pm_lookup *q, uint32_t
     if (threads <= 0)
         threads = omp_get_max_threads();
     size_t m = (map->count + stride - 1) / stride;
-    il_photon *irr = il_malloc(m * sizeof *irr, err);
-    if (!irr)
-        return IL_ERR_MEMORY;
-    atomic_int oom = 0;
-    /* Each point's estimate depends only on the map, so the values are the
-     * same for any thread count and schedule. */
-#pragma omp parallel num_threads(threads) if (m >= 1024)
-    {
-        il_pm_scratch scratch = {0};
-#pragma omp for schedule(dynamic, 256)
-        for (int64_t i = 0; i < (int64_t)m; i++) {
-            const il_photon *ph = &map->photons[(size_t)i * stride];
-            il_vec3 n = il_photon_normal(ph);
-            il_vec3 E = v3s(0.0f);
-            if (il_pm_irradiance_estimate(map, q, il_photon_pos(ph), n, &scratch, &E, NULL) != IL_OK)
-                atomic_store(&oom, 1);
-            il_photon *o = &irr[i];
-            memcpy(o->p, ph->p, sizeof o->p);
-            o->power = il_rgbe_pack(E);
-            o->dir = 0;
-            o->normal = (uint16_t)(ph->normal & IL_PM_NORMAL_MASK);
+    il_photon *irr = NULL;
+    il_status st;
+    if (!il_distrib_on(d)) {
+        irr = il_malloc(m * sizeof *irr, err);
+        if (!irr)
+            return IL_ERR_MEMORY;
+        st = estimate_points(map, q, stride, threads, 0, m, irr, err);
+    } else {
+        /* This process's contiguous part, then all parts in rank order. */
+        uint64_t lo, hi;
+        il_distrib_range(m, d->rank, d->size, &lo, &hi);
+        il_photon *part = il_malloc((hi > lo ? hi - lo : 1) * sizeof *part, err);
+        if (!part)
+            return IL_ERR_MEMORY;
+        st = estimate_points(map, q, stride, threads, (size_t)lo, (size_t)hi, part, err);
+        size_t *counts = st == IL_OK ? il_calloc((size_t)d->size, sizeof *counts, err) : NULL;
+        if (st == IL_OK && !counts)
+            st = IL_ERR_MEMORY;
+        void *all = NULL;
+        if (st == IL_OK)
+            st = il_distrib_allgather(d, part, (hi - lo) * sizeof *part, &all, counts, err);
+        size_t total = 0;
+        for (int r = 0; st == IL_OK && r < d->size; r++)
+            total += counts[r];
+        if (st == IL_OK && total != m * sizeof *irr)
+            st = il_fail(err, IL_ERR_RUNTIME,
+                         "photon map: the processes sent %zu bytes of irradiance, not %zu", total,
+                         m * sizeof *irr);
+        free(part);
+        free(counts);
+        if (st != IL_OK) {
+            free(all);
+            return st;
         }
-        il_pm_scratch_free(&scratch);
+        irr = all;
     }
-    il_status st = atomic_load(&oom)
-                       ? il_fail(err, IL_ERR_MEMORY, "photon map: out of memory precomputing irradiance")
-                       : il_pm_kd_build(irr, m, err);
+    if (st == IL_OK)
+        st = il_pm_kd_build_split(irr, m, d, err);
     if (st != IL_OK) {
         free(irr);
         return st;

@@ -9,6 +9,7 @@
  * photon to its heap slot. */
 #include <string.h>
 
+#include "methods/distrib.h"
 #include "methods/photon/pm_internal.h"
 
 /* Nodes in the left subtree of a left-balanced tree of n nodes: a complete
@@ -74,32 +75,41 @@ static void select_nth(il_photon *a, size_t n, size_t k, unsigned axis)
 
 #define KD_TASK_MIN 65536
 
+/* One node of the build (n > 1): the median of a[0..n-1] along the largest
+ * extent of their box moves to a[left_size(n)], smaller before, larger
+ * after, and is tagged with the axis.  Returns left_size(n). */
+static size_t split_node(il_photon *a, size_t n)
+{
+    float lo[3] = {a[0].p[0], a[0].p[1], a[0].p[2]};
+    float hi[3] = {lo[0], lo[1], lo[2]};
+    for (size_t i = 1; i < n; i++) {
+        for (int c = 0; c < 3; c++) {
+            float x = a[i].p[c];
+            lo[c] = x < lo[c] ? x : lo[c];
+            hi[c] = x > hi[c] ? x : hi[c];
+        }
+    }
+    /* Split along the largest extent of the subtree's box (Jensen 6.3.1). */
+    unsigned axis = 0;
+    float ext = hi[0] - lo[0];
+    for (unsigned c = 1; c < 3; c++) {
+        if (hi[c] - lo[c] > ext) {
+            ext = hi[c] - lo[c];
+            axis = c;
+        }
+    }
+    size_t m = left_size(n);
+    select_nth(a, n, m, axis);
+    il_pm_set_axis(&a[m], axis);
+    return m;
+}
+
 /* The subtree of a[0..n-1] in in-order layout: its root at left_size(n).
  * Recursion depth is the tree's height (at most 32 for 2^32 photons). */
 static void build_inorder(il_photon *a, size_t n)
 {
     while (n > 1) {
-        float lo[3] = {a[0].p[0], a[0].p[1], a[0].p[2]};
-        float hi[3] = {lo[0], lo[1], lo[2]};
-        for (size_t i = 1; i < n; i++) {
-            for (int c = 0; c < 3; c++) {
-                float x = a[i].p[c];
-                lo[c] = x < lo[c] ? x : lo[c];
-                hi[c] = x > hi[c] ? x : hi[c];
-            }
-        }
-        /* Split along the largest extent of the subtree's box (Jensen 6.3.1). */
-        unsigned axis = 0;
-        float ext = hi[0] - lo[0];
-        for (unsigned c = 1; c < 3; c++) {
-            if (hi[c] - lo[c] > ext) {
-                ext = hi[c] - lo[c];
-                axis = c;
-            }
-        }
-        size_t m = left_size(n);
-        select_nth(a, n, m, axis);
-        il_pm_set_axis(&a[m], axis);
+        size_t m = split_node(a, n);
         size_t nr = n - m - 1;
         if (n >= KD_TASK_MIN) {
             /* Big subtrees: the left half as a task for another thread.
@@ -163,6 +173,106 @@ il_status il_pm_kd_build(il_photon *photons, size_t n, il_error *err)
     il_pm_permute(photons, dest, n);
     free(dest);
     return IL_OK;
+}
+
+/* The top `levels` levels of build_inorder over a[0..n-1] (base: the whole
+ * array), the same splits in the same order; the subtrees below them are
+ * appended to ranges as (offset, size) pairs, left to right. */
+static void build_top(il_photon *base, il_photon *a, size_t n, unsigned levels, size_t *ranges,
+                      size_t *count)
+{
+    if (levels == 0 || n <= 1) {
+        ranges[2 * *count] = (size_t)(a - base);
+        ranges[2 * *count + 1] = n;
+        (*count)++;
+        return;
+    }
+    size_t m = split_node(a, n);
+    build_top(base, a, m, levels - 1, ranges, count);
+    build_top(base, a + m + 1, n - m - 1, levels - 1, ranges, count);
+}
+
+/* The process that builds subtree j of `count`: contiguous runs in order. */
+static int subtree_owner(size_t j, size_t count, int size)
+{
+    return (int)(j * (size_t)size / count);
+}
+
+il_status il_pm_kd_build_split(il_photon *photons, size_t n, const il_distrib *d, il_error *err)
+{
+    /* Small maps: building is cheaper than exchanging (the same choice on
+     * every process: n is the same everywhere). */
+    if (!il_distrib_on(d) || n < IL_PM_KD_SPLIT_MIN)
+        return il_pm_kd_build(photons, n, err);
+    /* Twice as many subtrees as processes, so that uneven halves even out
+     * a little; the levels above them are split on every process. */
+    unsigned levels = 1;
+    while (((size_t)1 << levels) < 2 * (size_t)d->size)
+        levels++;
+    size_t cap = (size_t)1 << levels, count = 0;
+    size_t *ranges = il_malloc(2 * cap * sizeof *ranges, err);
+    size_t *counts = il_calloc((size_t)d->size, sizeof *counts, err);
+    uint32_t *dest = il_malloc(n * sizeof *dest, err);
+    if (!ranges || !counts || !dest) {
+        free(ranges);
+        free(counts);
+        free(dest);
+        return IL_ERR_MEMORY;
+    }
+    build_top(photons, photons, n, levels, ranges, &count);
+    /* This process's subtrees, each built as build_inorder builds it in a
+     * single process; then all of them, in subtree order, to everyone. */
+    size_t bytes = 0;
+    for (size_t j = 0; j < count; j++)
+        if (subtree_owner(j, count, d->size) == d->rank)
+            bytes += ranges[2 * j + 1] * sizeof(il_photon);
+#pragma omp parallel if (bytes >= KD_TASK_MIN * sizeof(il_photon))
+#pragma omp single
+    for (size_t j = 0; j < count; j++)
+        if (subtree_owner(j, count, d->size) == d->rank) {
+            il_photon *a = photons + ranges[2 * j];
+            size_t m = ranges[2 * j + 1];
+#pragma omp task default(none) firstprivate(a, m)
+            build_inorder(a, m);
+        }
+    unsigned char *send = il_malloc(bytes ? bytes : 1, err);
+    il_status st = send ? IL_OK : IL_ERR_MEMORY;
+    void *all = NULL;
+    if (st == IL_OK) {
+        size_t off = 0;
+        for (size_t j = 0; j < count; j++)
+            if (subtree_owner(j, count, d->size) == d->rank) {
+                memcpy(send + off, photons + ranges[2 * j], ranges[2 * j + 1] * sizeof(il_photon));
+                off += ranges[2 * j + 1] * sizeof(il_photon);
+            }
+        st = il_distrib_allgather(d, send, bytes, &all, counts, err);
+    }
+    /* Every subtree back into its place: rank r's subtrees are the run
+     * j with subtree_owner(j) == r, in order, and rank order is j order. */
+    size_t off = 0, want = 0;
+    for (size_t j = 0; st == IL_OK && j < count; j++)
+        want += ranges[2 * j + 1] * sizeof(il_photon);
+    size_t got = 0;
+    for (int r = 0; st == IL_OK && r < d->size; r++)
+        got += counts[r];
+    if (st == IL_OK && got != want)
+        st = il_fail(err, IL_ERR_RUNTIME, "photon map: the processes sent %zu bytes of subtrees, not %zu",
+                     got, want);
+    for (size_t j = 0; st == IL_OK && j < count; j++) {
+        size_t b = ranges[2 * j + 1] * sizeof(il_photon);
+        memcpy(photons + ranges[2 * j], (const unsigned char *)all + off, b);
+        off += b;
+    }
+    free(all);
+    free(send);
+    free(counts);
+    free(ranges);
+    if (st == IL_OK) {
+        heap_slots(dest, 0, n, 0);
+        il_pm_permute(photons, dest, n);
+    }
+    free(dest);
+    return st;
 }
 
 /* ----------------------------------------------------------------- queries */

@@ -9,6 +9,13 @@
 il_status il_pm_map_build(il_pm_map *map, il_photon *photons, size_t count, float power_scale,
                           il_photon_lookup lookup, float radius, il_error *err)
 {
+    return il_pm_map_build_split(map, photons, count, power_scale, lookup, radius, NULL, err);
+}
+
+il_status il_pm_map_build_split(il_pm_map *map, il_photon *photons, size_t count, float power_scale,
+                                il_photon_lookup lookup, float radius, const il_distrib *d,
+                                il_error *err)
+{
     memset(map, 0, sizeof *map);
     map->photons = photons;
     map->count = photons ? count : 0;
@@ -42,7 +49,7 @@ il_status il_pm_map_build(il_pm_map *map, il_photon *photons, size_t count, floa
         }
     }
     if (st == IL_OK)
-        st = lookup == IL_PHOTON_KDTREE ? il_pm_kd_build(map->photons, map->count, err)
+        st = lookup == IL_PHOTON_KDTREE ? il_pm_kd_build_split(map->photons, map->count, d, err)
                                         : il_pm_grid_build(map, radius, err);
     if (st != IL_OK)
         il_pm_map_free(map);

@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "methods/camera_pass.h"
+#include "methods/distrib.h"
 #include "methods/photon/pm.h"
 #include "scene/direct.h"
 #include "trace/trace.h"
@@ -140,7 +141,7 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
                                .max_depth = ps->max_photon_depth,
                                .threads = desc->threads,
                                .split = true};
-        il_status s = il_pm_trace(scene, &td, &ph, err);
+        il_status s = il_pm_trace_split(scene, &td, desc->distrib, &ph, err);
         if (s != IL_OK)
             return s;
     }
@@ -148,17 +149,18 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
     il_pm_report_photons(desc->photon, ph.caustic, ph.num_caustic, 1);
     double t1 = omp_get_wtime();
     float scale = 1.0f / (float)ps->photons;
-    il_status s = il_pm_map_build(global, ph.global, ph.num_global, scale, ps->lookup.lookup,
-                                  ps->lookup.radius, err);
+    il_status s = il_pm_map_build_split(global, ph.global, ph.num_global, scale, ps->lookup.lookup,
+                                        ps->lookup.radius, desc->distrib, err);
     if (s == IL_OK)
-        s = il_pm_map_build(caustic, ph.caustic, ph.num_caustic, scale, ps->lookup.lookup,
-                            ps->lookup.radius, err);
+        s = il_pm_map_build_split(caustic, ph.caustic, ph.num_caustic, scale, ps->lookup.lookup,
+                                  ps->lookup.radius, desc->distrib, err);
     else
         free(ph.caustic);
     /* Christensen 1999: irradiance at every 4th global photon, so that a
      * Lambertian hit reads the global map with one nearest-point search. */
     if (s == IL_OK && !(desc->photon && desc->photon->no_precomputed_irradiance))
-        s = il_pm_irradiance_build(global, &ps->lookup, IL_PM_IRRADIANCE_STRIDE, desc->threads, err);
+        s = il_pm_irradiance_build_split(global, &ps->lookup, IL_PM_IRRADIANCE_STRIDE, desc->threads,
+                                         desc->distrib, err);
     st->emitted = ps->photons;
     st->stored_global = ph.num_global;
     st->stored_caustic = ph.num_caustic;
@@ -181,6 +183,8 @@ il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_des
     uint32_t max_depth = desc->max_depth ? desc->max_depth : 8u;
     il_pm_settings ps;
     il_status s = il_pm_settings_resolve(scene, desc->photon, max_depth, false, &ps, err);
+    if (s == IL_OK)
+        s = il_distrib_check(desc->distrib, desc, "photon", err);
     if (s != IL_OK)
         return s;
     double t0 = omp_get_wtime();
@@ -197,7 +201,10 @@ il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_des
                        .out_of_memory = &oom};
         il_camera_pass_result r = {0};
         double t1 = omp_get_wtime();
-        s = il_camera_pass_tiles(scene, film, desc, pm_tile, &m, 0, &r, err);
+        /* Split across processes: this process's tiles (pm_distrib.c). */
+        s = il_distrib_on(desc->distrib)
+                ? il_pm_camera_pass_split(scene, film, desc, pm_tile, &m, &r, err)
+                : il_camera_pass_tiles(scene, film, desc, pm_tile, &m, 0, &r, err);
         stats->photon.seconds_render = omp_get_wtime() - t1;
         if (s == IL_OK && atomic_load(&oom))
             s = il_fail(err, IL_ERR_MEMORY, "photon: out of memory gathering photons");

@@ -20,7 +20,10 @@
  * Determinism: the visible points and photons depend only on the seed,
  * the pixel and the pass; each pixel's update is done by one thread over
  * photons in the map's order, so the image is the same for any thread
- * count. */
+ * count.  Split across processes (il_distrib): process r takes the pixel
+ * rows y mod N = r, the photons are traced in parts and exchanged into the
+ * very map a single process builds (pm_distrib.c), so every pixel sees the
+ * same updates and the processes' films sum to the single-process film. */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -28,6 +31,7 @@
 
 #include "core/error.h"
 #include "methods/camera_pass.h"
+#include "methods/distrib.h"
 #include "methods/photon/pm.h"
 #include "scene/direct.h"
 #include "scene/lights.h"
@@ -51,7 +55,33 @@ typedef struct sppm {
     sppm_pixel *px;
     size_t num_px;
     int threads;
+    const il_distrib *distrib; /* split across processes: pixel rows y with
+                                  y mod size == rank are this process's */
 } sppm;
+
+/* Whether pixel row y is this process's (every row in a single process). */
+static bool owns_row(const sppm *s, uint32_t y)
+{
+    return !il_distrib_on(s->distrib) || y % (uint32_t)s->distrib->size == (uint32_t)s->distrib->rank;
+}
+
+/* The largest r_max of all processes (a maximum is exact in any order). */
+static il_status max_over_processes(const il_distrib *d, float *r_max, il_error *err)
+{
+    if (!il_distrib_on(d))
+        return IL_OK;
+    void *all = NULL;
+    il_status st = il_distrib_allgather(d, r_max, sizeof *r_max, &all, NULL, err);
+    if (st != IL_OK)
+        return st;
+    for (int r = 0; r < d->size; r++) {
+        float v;
+        memcpy(&v, (const unsigned char *)all + (size_t)r * sizeof v, sizeof v);
+        *r_max = il_maxf(*r_max, v);
+    }
+    free(all);
+    return IL_OK;
+}
 
 /* Step 1: the visible points of pass `pass`; returns the largest radius
  * among the pixels that have one (0 when none) and counts rays. */
@@ -63,7 +93,7 @@ static float visible_points(sppm *s, uint32_t pass, uint64_t *rays_out)
 #pragma omp parallel for schedule(dynamic, 4) num_threads(s->threads) reduction(+ : rays) \
     reduction(max : r_max)
     for (uint32_t y = 0; y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
+        for (uint32_t x = 0; x < w && owns_row(s, y); x++) {
             sppm_pixel *p = &s->px[(size_t)y * w + x];
             il_sampler smp;
             il_vec3 dir = il_camera_sample(&s->ctx, x, y, pass, &smp);
@@ -132,7 +162,9 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
                            .max_depth = s->ps.max_photon_depth,
                            .threads = s->threads,
                            .split = false};
-    il_status status = s->ps.max_photon_depth > 0 ? il_pm_trace(s->scene, &td, &ph, err) : IL_OK;
+    il_status status = s->ps.max_photon_depth > 0
+                           ? il_pm_trace_split(s->scene, &td, s->distrib, &ph, err)
+                           : IL_OK;
     if (status != IL_OK)
         return status;
     free(ph.caustic);
@@ -144,8 +176,8 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
     st->seconds_trace += t1 - t0;
 
     il_pm_map map = {0};
-    status = il_pm_map_build(&map, ph.global, ph.num_global, 1.0f, s->ps.lookup.lookup,
-                             r_max > 0.0f ? r_max : s->ps.initial_radius, err);
+    status = il_pm_map_build_split(&map, ph.global, ph.num_global, 1.0f, s->ps.lookup.lookup,
+                                   r_max > 0.0f ? r_max : s->ps.initial_radius, s->distrib, err);
     if (status != IL_OK)
         return status;
     double t2 = omp_get_wtime();
@@ -161,7 +193,8 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
             il_pm_buffer buf = {0};
 #pragma omp for schedule(dynamic, 256)
             for (size_t i = 0; i < s->num_px; i++)
-                if (s->px[i].valid && !failed && collect(&map, &s->px[i], s->ps.alpha, &buf, NULL) != IL_OK)
+                if (s->px[i].valid && !failed && owns_row(s, (uint32_t)(i / s->ctx.width)) &&
+                    collect(&map, &s->px[i], s->ps.alpha, &buf, NULL) != IL_OK)
                     failed = 1;
             il_pm_buffer_free(&buf);
         }
@@ -179,7 +212,7 @@ static void write_film(const sppm *s, il_film *film, uint32_t passes)
     il_film_clear(film);
     double photons = (double)passes * (double)s->ps.photons;
     for (uint32_t y = 0; y < s->ctx.height; y++)
-        for (uint32_t x = 0; x < s->ctx.width; x++) {
+        for (uint32_t x = 0; x < s->ctx.width && owns_row(s, y); x++) {
             const sppm_pixel *p = &s->px[(size_t)y * s->ctx.width + x];
             double area = IL_PI * (double)p->r * p->r;
             double k = p->n > 0.0 && area > 0.0 ? 1.0 / (photons * area) : 0.0;
@@ -199,8 +232,11 @@ il_status il_sppm_render(const il_scene *scene, il_film *film, const il_render_d
     memset(stats, 0, sizeof *stats);
     sppm s = {.scene = scene, .desc = desc, .max_depth = desc->max_depth ? desc->max_depth : 8u};
     il_status st = il_pm_settings_resolve(scene, desc->photon, s.max_depth, true, &s.ps, err);
+    if (st == IL_OK)
+        st = il_distrib_check(desc->distrib, desc, "sppm", err);
     if (st != IL_OK)
         return st;
+    s.distrib = desc->distrib;
     s.threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     s.ctx.film = film;
     s.ctx.width = il_film_width(film);
@@ -227,12 +263,17 @@ il_status il_sppm_render(const il_scene *scene, il_film *film, const il_render_d
         double tv = omp_get_wtime();
         float r_max = visible_points(&s, done, &rays);
         ps->seconds_render += omp_get_wtime() - tv;
+        /* The grid's cell size must be the same on every process. */
+        if ((st = max_over_processes(s.distrib, &r_max, err)) != IL_OK)
+            break;
         if ((st = photon_pass(&s, done, r_max, ps, err)) != IL_OK)
             break;
         done++;
         write_film(&s, film, done);
         double seconds = omp_get_wtime() - t0;
-        if (desc->progress) {
+        /* Split across processes the film is this process's rows only:
+         * no progress (il_distrib). */
+        if (desc->progress && !il_distrib_on(s.distrib)) {
             il_render_progress p = {.passes_done = done,
                                     .passes_total = passes == UINT32_MAX ? 0 : passes,
                                     .seconds = seconds,

@@ -56,6 +56,9 @@ typedef struct il_rad_settings {
     void *on_patches_user;
     uint64_t seed;
     int threads;               /* > 0, resolved */
+    /* desc->distrib: the form-factor rows split across processes
+     * (rad_solve_distrib.c); on_step is off then. */
+    const il_distrib *distrib;
 } il_rad_settings;
 
 /* Resolves defaults and checks ranges (clear messages, IL_ERR_INVALID). */

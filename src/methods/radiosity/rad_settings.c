@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/radiosity/rad.h"
 
 /* Limits beyond which an option is certainly a mistake, not a wish. */
@@ -93,6 +94,9 @@ il_status il_rad_settings_resolve(const il_scene *scene, const il_render_desc *d
         return il_fail(err, IL_ERR_INVALID,
                        "radiosity: threads %d is out of range (1 to %d; 0 means all cores)",
                        desc->threads, IL_RAD_MAX_THREADS);
+    il_status distrib_st = il_distrib_check(desc->distrib, desc, "radiosity", err);
+    if (distrib_st != IL_OK)
+        return distrib_st;
 
     out->patch_size = r.patch_size;
     if (out->patch_size == 0.0f) {
@@ -116,6 +120,12 @@ il_status il_rad_settings_resolve(const il_scene *scene, const il_render_desc *d
     out->on_patches = NULL;
     out->on_patches_user = NULL;
     out->seed = desc->seed;
+    out->distrib = desc->distrib;
+    if (il_distrib_on(desc->distrib)) {
+        /* A process that stopped alone would leave the others waiting. */
+        out->on_step = NULL;
+        out->on_step_user = NULL;
+    }
     out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     if (out->threads < 1)
         out->threads = 1;

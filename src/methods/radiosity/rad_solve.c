@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/radiosity/rad_solve.h"
 
 il_status il_rad_rows_init(il_rad_rows *rows, const il_ff *ff, uint32_t cap, int threads,
@@ -59,8 +60,7 @@ size_t il_rad_rows_bytes(const il_rad_rows *rows)
     return b;
 }
 
-/* Copies `src` into slot k, growing its buffers; false without memory. */
-static bool copy_row(il_rad_rows *rows, uint32_t k, const il_ff_row *src)
+bool il_rad_rows_copy(il_rad_rows *rows, uint32_t k, const il_ff_row *src)
 {
     il_ff_row *dst = &rows->copy[k];
     if (src->count > rows->copy_cap[k]) {
@@ -89,6 +89,8 @@ il_status il_rad_rows_fetch(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cac
     if (count > rows->cap)
         return il_fail(err, IL_ERR_INVALID, "radiosity: row block of %u exceeds %u", count,
                        rows->cap);
+    if (il_distrib_on(rows->distrib))
+        return il_rad_rows_fetch_split(rows, ff, cache, patches, first, count, stats, err);
     double t0 = omp_get_wtime();
     uint64_t computed = 0;
     int failed = 0;
@@ -107,7 +109,7 @@ il_status il_rad_rows_fetch(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cac
         row = il_ff_compute_row(ff, work, i);
         computed++;
         il_ff_cache_put(cache, i, row);
-        if (!copy_row(rows, k, row)) {
+        if (!il_rad_rows_copy(rows, k, row)) {
             failed |= 1;
             rows->row[k] = NULL;
             continue;

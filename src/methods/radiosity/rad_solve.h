@@ -13,6 +13,7 @@ typedef struct il_rad_rows {
     il_ff_row *copy;           /* per slot: a copy of a computed row (the cache
                                   may not keep it, and `work` is reused) */
     uint32_t *copy_cap;
+    const il_distrib *distrib; /* on: rows computed split across processes */
 } il_rad_rows;
 
 il_status il_rad_rows_init(il_rad_rows *rows, const il_ff *ff, uint32_t cap, int threads,
@@ -25,6 +26,13 @@ void il_rad_rows_free(il_rad_rows *rows);
 il_status il_rad_rows_fetch(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cache,
                             const uint32_t *patches, uint32_t first, uint32_t count,
                             il_radiosity_stats *stats, il_error *err);
+/* il_rad_rows_fetch split across the processes of rows->distrib
+ * (rad_solve_distrib.c): the same rows, bit for bit, on every process. */
+il_status il_rad_rows_fetch_split(il_rad_rows *rows, const il_ff *ff, il_ff_cache *cache,
+                                  const uint32_t *patches, uint32_t first, uint32_t count,
+                                  il_radiosity_stats *stats, il_error *err);
+/* Copies src into slot k of rows->copy, growing it; false without memory. */
+bool il_rad_rows_copy(il_rad_rows *rows, uint32_t k, const il_ff_row *src);
 /* Bytes held by the row copies. */
 size_t il_rad_rows_bytes(const il_rad_rows *rows);
 

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/radiosity/rad_solve.h"
 
 /* Rows per block: enough to keep every thread busy, few enough that copies
@@ -76,7 +77,9 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
         free(display);
         return IL_ERR_MEMORY;
     }
-    uint32_t bs = block_size(settings->threads, n);
+    /* Split across processes every process must fetch the same blocks,
+     * whatever its thread count: the largest block then. */
+    uint32_t bs = block_size(il_distrib_on(settings->distrib) ? 32 : settings->threads, n);
     il_rad_rows rows;
     il_status st = il_rad_rows_init(&rows, ff, bs, settings->threads, err);
     if (st != IL_OK) {
@@ -85,6 +88,7 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
         free(display);
         return st;
     }
+    rows.distrib = settings->distrib;
 
     uint32_t steps = 0;
     double frac = p0 > 0.0 ? 1.0 : 0.0;

@@ -143,6 +143,7 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
         free(display);
         return st;
     }
+    rows.distrib = settings->distrib;
 
     shoot_scan scan;
     scan_unshot(mesh, sol->unshot, &scan);

@@ -63,8 +63,9 @@ expect_no_file bad2.pfm "rank without its scene"
 # What is not distributed says so.
 expect_exit 1 "--time under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --time 1 -q -o t.pfm
 expect_stderr "use --spp, not --time" "--time under mpirun"
-expect_exit 1 "radiosity under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --method radiosity -q -o r.pfm
-expect_stderr "supports --method pt only" "radiosity under mpirun"
-expect_no_file r.pfm "radiosity under mpirun"
+# (photon, sppm and radiosity run split: test_cli_mpi_methods.sh)
+expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --method rsm -q -o r.pfm
+expect_stderr "supports --method pt, photon, sppm and radiosity" "rsm under mpirun"
+expect_no_file r.pfm "rsm under mpirun"
 
 finish
