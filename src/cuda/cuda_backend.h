@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "illum/illum.h"
 #include "kernel/bvh_build.h"
+#include "kernel/kernel_photon.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,6 +54,46 @@ typedef struct il_scene il_scene;
  * yet (il_kscene_build), IL_ERR_RUNTIME / IL_ERR_MEMORY for the GPU. */
 il_status il_cuda_render_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
                             uint32_t max_depth, uint64_t seed, float *rgb, il_error *err);
+
+/* What a GPU photon render measured (GPU event times). */
+typedef struct il_cuda_photon_stats {
+    uint64_t emitted, stored;      /* photons emitted, records stored */
+    double seconds_trace;          /* tracing the photons */
+    double seconds_build;          /* keys, radix sort, reorder, cell ranges */
+    double seconds_gather;         /* the per-pixel gather, all samples */
+} il_cuda_photon_stats;
+
+/* The photon method on the GPU with the shared kernels (kernel/
+ * kernel_photon.h, kernel_grid.h, kernel_photon_gather.h): num_emitted
+ * photons of at most max_depth records each, the hashed grid with cells of
+ * side radius built by a radix sort by cell, and spp camera samples per
+ * pixel reading the grid at their first hit (radius: the gather radius).
+ * rgb as il_cuda_render_pt.  stats may be NULL. */
+il_status il_cuda_render_photon(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
+                                uint32_t max_depth, uint64_t seed, uint32_t num_emitted, float radius,
+                                float *rgb, il_cuda_photon_stats *stats, il_error *err);
+
+/* The GPU's photon map of a kernel scene, downloaded for the tests: photons
+ * (num_emitted * max_depth slots, sorted by cell), cell_start and cell_end
+ * (il_kgrid_hash_mask(slots) + 1 entries each), *count the stored records.
+ * kernel/kernel_photon_map.c builds the same on the CPU. */
+typedef struct il_kscene il_kscene;
+il_status il_cuda_photon_map(const il_kscene *ks, uint32_t num_emitted, float radius, ilk_photon *photons,
+                             uint32_t *cell_start, uint32_t *cell_end, uint32_t *count, il_error *err);
+
+/* What a GPU radiosity solve measured (GPU event times). */
+typedef struct il_cuda_radiosity_stats {
+    double seconds_form_factors;   /* casting every row's rays */
+    double seconds_sweeps;         /* the Jacobi sweeps until convergence */
+} il_cuda_radiosity_stats;
+
+/* The Jacobi gathering solve of a packed patch mesh (kernel/
+ * kernel_radiosity_scene.h) on the GPU: what il_krad_solve computes on the
+ * CPU, with the same arguments; stats may be NULL. */
+typedef struct il_krad il_krad;
+il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, uint32_t max_steps, ilk_vec3 *radiance,
+                                  uint32_t *steps, double *fraction, il_cuda_radiosity_stats *stats,
+                                  il_error *err);
 
 #ifdef __cplusplus
 }

@@ -165,54 +165,27 @@ static void build_node(builder *bd, uint32_t node, uint32_t begin, uint32_t end,
     build_node(bd, left + 1, mid, end, depth + 1);
 }
 
-il_status il_kbvh_build_scene(const il_scene *scene, il_kbvh *out, il_error *err)
+/* Builds over tri[0..n) (n >= 1) with their boxes box[0..n) (taken from
+ * the original vertices: v0 + e1 need not round back to v1); both arrays
+ * are freed. */
+static il_status build_tris(ilk_tri *tri, aabb *box, uint32_t n, il_kbvh *out, il_error *err)
 {
-    memset(out, 0, sizeof *out);
-    uint64_t total = 0;
-    for (uint32_t m = 0; m < scene->num_meshes; m++)
-        total += scene->meshes[m].num_triangles;
-    if (total == 0)
-        return IL_OK;
-    if (total > (UINT32_MAX - 1) / 2)
-        return il_fail(err, IL_ERR_INVALID, "BVH: %llu triangles is more than the flat layout indexes",
-                       (unsigned long long)total);
-    uint32_t n = (uint32_t)total;
-
     builder bd = {0};
-    ilk_tri *tri = il_malloc(sizeof *tri * n, err);
-    bd.box = il_malloc(sizeof *bd.box * n, err);
+    bd.box = box;
     bd.centroid = il_malloc(sizeof *bd.centroid * n, err);
     bd.ref = il_malloc(sizeof *bd.ref * n, err);
     bd.nodes = il_calloc(2 * (size_t)n, sizeof *bd.nodes, err);
     ilk_tri *ordered = il_malloc(sizeof *ordered * n, err);
-    if (!tri || !bd.box || !bd.centroid || !bd.ref || !bd.nodes || !ordered) {
+    if (!bd.box || !bd.centroid || !bd.ref || !bd.nodes || !ordered) {
         free(tri); free(bd.box); free(bd.centroid); free(bd.ref); free(bd.nodes); free(ordered);
         return IL_ERR_MEMORY;
     }
-
-    uint32_t k = 0;
     aabb root = aabb_empty();
-    for (uint32_t m = 0; m < scene->num_meshes; m++) {
-        const il_mesh *mesh = &scene->meshes[m];
-        for (uint32_t p = 0; p < mesh->num_triangles; p++, k++) {
-            const uint32_t *ix = &mesh->indices[3 * p];
-            il_vec3 a = mesh->positions[ix[0]], b = mesh->positions[ix[1]], c = mesh->positions[ix[2]];
-            ilk_vec3 v0 = ilk_v3(a.x, a.y, a.z), v1 = ilk_v3(b.x, b.y, b.z), v2 = ilk_v3(c.x, c.y, c.z);
-            tri[k].v0 = v0;
-            tri[k].e1 = ilk_sub(v1, v0);
-            tri[k].e2 = ilk_sub(v2, v0);
-            tri[k].mesh = m;
-            tri[k].prim = p;
-            tri[k].pad = mesh->material;
-            aabb bb = aabb_empty();
-            aabb_grow_p(&bb, v0);
-            aabb_grow_p(&bb, v1);
-            aabb_grow_p(&bb, v2);
-            bd.box[k] = bb;
-            bd.centroid[k] = ilk_scale(ilk_add(bb.lo, bb.hi), 0.5f);
-            bd.ref[k] = k;
-            aabb_grow(&root, bb);
-        }
+    for (uint32_t k = 0; k < n; k++) {
+        aabb bb = bd.box[k];
+        bd.centroid[k] = ilk_scale(ilk_add(bb.lo, bb.hi), 0.5f);
+        bd.ref[k] = k;
+        aabb_grow(&root, bb);
     }
     bd.num_nodes = 1;
     set_bounds(&bd.nodes[0], root);
@@ -229,6 +202,76 @@ il_status il_kbvh_build_scene(const il_scene *scene, il_kbvh *out, il_error *err
     out->depth = bd.depth;
     out->num_leaves = bd.leaves;
     return IL_OK;
+}
+
+/* The flat triangle (a, b, c) and its box. */
+static void make_tri(il_vec3 a, il_vec3 b, il_vec3 c, uint32_t mesh, uint32_t prim, uint32_t pad, ilk_tri *t,
+                     aabb *box)
+{
+    ilk_vec3 v0 = ilk_v3(a.x, a.y, a.z), v1 = ilk_v3(b.x, b.y, b.z), v2 = ilk_v3(c.x, c.y, c.z);
+    t->v0 = v0;
+    t->e1 = ilk_sub(v1, v0);
+    t->e2 = ilk_sub(v2, v0);
+    t->mesh = mesh;
+    t->prim = prim;
+    t->pad = pad;
+    *box = aabb_empty();
+    aabb_grow_p(box, v0);
+    aabb_grow_p(box, v1);
+    aabb_grow_p(box, v2);
+}
+
+il_status il_kbvh_build_scene(const il_scene *scene, il_kbvh *out, il_error *err)
+{
+    memset(out, 0, sizeof *out);
+    uint64_t total = 0;
+    for (uint32_t m = 0; m < scene->num_meshes; m++)
+        total += scene->meshes[m].num_triangles;
+    if (total == 0)
+        return IL_OK;
+    if (total > (UINT32_MAX - 1) / 2)
+        return il_fail(err, IL_ERR_INVALID, "BVH: %llu triangles is more than the flat layout indexes",
+                       (unsigned long long)total);
+    uint32_t n = (uint32_t)total;
+    ilk_tri *tri = il_malloc(sizeof *tri * n, err);
+    aabb *box = il_malloc(sizeof *box * n, err);
+    if (!tri || !box) {
+        free(tri);
+        free(box);
+        return IL_ERR_MEMORY;
+    }
+    uint32_t k = 0;
+    for (uint32_t m = 0; m < scene->num_meshes; m++) {
+        const il_mesh *mesh = &scene->meshes[m];
+        for (uint32_t p = 0; p < mesh->num_triangles; p++, k++) {
+            const uint32_t *ix = &mesh->indices[3 * p];
+            make_tri(mesh->positions[ix[0]], mesh->positions[ix[1]], mesh->positions[ix[2]], m, p,
+                     mesh->material, &tri[k], &box[k]);
+        }
+    }
+    return build_tris(tri, box, n, out, err);
+}
+
+il_status il_kbvh_build_indexed(const il_vec3 *positions, const uint32_t *indices, uint32_t num_tris,
+                                const uint32_t *pad, il_kbvh *out, il_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (num_tris == 0)
+        return IL_OK;
+    if (num_tris > (UINT32_MAX - 1) / 2)
+        return il_fail(err, IL_ERR_INVALID, "BVH: %u triangles is more than the flat layout indexes", num_tris);
+    ilk_tri *tri = il_malloc(sizeof *tri * num_tris, err);
+    aabb *box = il_malloc(sizeof *box * num_tris, err);
+    if (!tri || !box) {
+        free(tri);
+        free(box);
+        return IL_ERR_MEMORY;
+    }
+    for (uint32_t p = 0; p < num_tris; p++) {
+        const uint32_t *ix = &indices[3 * p];
+        make_tri(positions[ix[0]], positions[ix[1]], positions[ix[2]], 0, p, pad ? pad[p] : 0, &tri[p], &box[p]);
+    }
+    return build_tris(tri, box, num_tris, out, err);
 }
 
 ilk_bvh il_kbvh_view(const il_kbvh *bvh)

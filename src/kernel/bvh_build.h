@@ -25,6 +25,12 @@ typedef struct il_kbvh {
  * give an empty BVH that nothing hits.  Free with il_kbvh_free. */
 il_status il_kbvh_build_scene(const il_scene *scene, il_kbvh *out, il_error *err);
 
+/* Builds over num_tris indexed triangles (3 indices each into positions);
+ * tris[k].prim is the triangle's index, mesh 0, pad pad[prim] (0 when pad
+ * is NULL). */
+il_status il_kbvh_build_indexed(const il_vec3 *positions, const uint32_t *indices, uint32_t num_tris,
+                                const uint32_t *pad, il_kbvh *out, il_error *err);
+
 /* The traversal view of a built BVH (host pointers). */
 ilk_bvh il_kbvh_view(const il_kbvh *bvh);
 

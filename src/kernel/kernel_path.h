@@ -4,15 +4,20 @@
  * emissive triangles (chosen by power) at every vertex, cosine-weighted
  * bounces.  Emission is counted on camera rays only, so every path length is
  * estimated once, by NEE (pbrt-v4 section 13.4 without MIS: unbiased, and the
- * same expectation as the CPU path tracer's NEE + MIS).  Random numbers: a
- * PCG32 stream per (pixel, sample) (O'Neill 2014), so the result does not
- * depend on how pixels are split among threads or GPU blocks; it is not the
- * CPU path tracer's Sobol sampler, so images agree in expectation, not bit
- * for bit. */
+ * same expectation as the CPU path tracer's NEE + MIS).  Random numbers: the
+ * CPU's Owen-scrambled Sobol sampler (kernel/kernel_sobol.h, the same
+ * numbers as core/sampler.c for a (seed, pixel, sample, dimension)), the
+ * camera jitter in dimensions 0-1 and three pairs per vertex (light choice,
+ * point on the light, bounce), so the result does not depend on how pixels
+ * are split among threads or GPU blocks.  The CPU path tracer spends its
+ * dimensions differently (MIS, its own BSDF sampling), so images agree in
+ * expectation, not bit for bit.  The PCG32 stream below (ilk_rng) is for
+ * the photon kernels. */
 #ifndef IL_KERNEL_PATH_H
 #define IL_KERNEL_PATH_H
 
 #include "kernel/kernel_bvh.h"
+#include "kernel/kernel_sobol.h"
 
 #define ILK_PI 3.14159265358979323846f
 
@@ -104,14 +109,15 @@ IL_DEVICE_INLINE uint32_t ilk_pick_light(const float *cdf, uint32_t n, float u)
 }
 
 /* Direct light at p (unit normal n facing the incoming side, albedo rho):
- * one emissive triangle by power, one uniform point on it (pbrt-v4 section
- * 6.5), the area-measure estimator Le f cos cos' / (d^2 p_light p_area). */
-IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n, ilk_vec3 rho, ilk_rng *rng)
+ * one emissive triangle by power (u), one uniform point on it (u1, u2;
+ * pbrt-v4 section 6.5), the area-measure estimator
+ * Le f cos cos' / (d^2 p_light p_area). */
+IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n, ilk_vec3 rho, float u, float u1,
+                                     float u2)
 {
     ilk_vec3 zero = ilk_v3(0, 0, 0);
     if (sc->num_lights == 0)
         return zero;
-    float u = ilk_rng_float(rng), u1 = ilk_rng_float(rng), u2 = ilk_rng_float(rng);
     uint32_t li = ilk_pick_light(sc->light_cdf, sc->num_lights, u);
     float pmf = sc->light_cdf[li + 1] - sc->light_cdf[li];
     if (!(pmf > 0.0f))
@@ -147,12 +153,11 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n
     return ilk_scale(ilk_mul(lm->emission, rho), g);
 }
 
-/* The radiance of one camera sample through pixel (x, y). */
-IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint32_t y, uint32_t sample)
+/* The pinhole camera ray through film position (x + u, y + v), as
+ * scene/camera.c (pixel (0, 0) at the top left). */
+IL_DEVICE_INLINE ilk_ray ilk_camera_ray(const ilk_camera *cam, uint32_t x, uint32_t y, float u, float v)
 {
-    ilk_rng rng = ilk_rng_for(sc->seed, (uint64_t)y * sc->width + x, sample);
-    const ilk_camera *cam = &sc->camera;
-    float fx = (float)x + ilk_rng_float(&rng), fy = (float)y + ilk_rng_float(&rng);
+    float fx = (float)x + u, fy = (float)y + v;
     float sx = (2.0f * fx * cam->inv_width - 1.0f) * cam->tan_half_x;
     float sy = (1.0f - 2.0f * fy * cam->inv_height) * cam->tan_half_y;
     ilk_ray ray;
@@ -160,6 +165,16 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
     ray.dir = ilk_normalize(ilk_add(cam->forward, ilk_add(ilk_scale(cam->right, sx), ilk_scale(cam->up, sy))));
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;
+    return ray;
+}
+
+/* The radiance of one camera sample through pixel (x, y). */
+IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint32_t y, uint32_t sample)
+{
+    ilk_sobol smp = ilk_sobol_start(sc->seed, (uint64_t)y * sc->width + x, sample);
+    float u, v;
+    ilk_sobol_2d(&smp, &u, &v);
+    ilk_ray ray = ilk_camera_ray(&sc->camera, x, y, u, v);
     ilk_vec3 L = ilk_v3(0, 0, 0), beta = ilk_v3(1, 1, 1);
     for (uint32_t depth = 0;; depth++) {
         ilk_hit h;
@@ -175,14 +190,17 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             break;
         ilk_vec3 n = side < 0.0f ? ng : ilk_scale(ng, -1.0f);
         ilk_vec3 p = ilk_add(ray.org, ilk_scale(ray.dir, h.t));
-        L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, p, n, m->diffuse, &rng)));
+        float ul, unused, u1, u2;
+        ilk_sobol_2d(&smp, &ul, &unused);
+        ilk_sobol_2d(&smp, &u1, &u2);
+        L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, p, n, m->diffuse, ul, u1, u2)));
         if (depth + 1 >= sc->max_depth)
             break;
         /* Lambertian: f cos / pdf = rho. */
         beta = ilk_mul(beta, m->diffuse);
         if (beta.x <= 0.0f && beta.y <= 0.0f && beta.z <= 0.0f)
             break;
-        float u1 = ilk_rng_float(&rng), u2 = ilk_rng_float(&rng);
+        ilk_sobol_2d(&smp, &u1, &u2);
         ray.dir = ilk_cosine_dir(n, u1, u2);
         ray.org = ilk_add(p, ilk_scale(n, sc->epsilon));
         ray.tmin = 0.0f;

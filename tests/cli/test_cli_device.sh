@@ -19,16 +19,25 @@ expect_no_file bad.exr "unknown device"
 expect_exit 2 "--device without a value" -- "$ILLUM" render cornell --device
 
 if [ "$cuda" = on ] && [ "$gpu" = yes ]; then
-    # A GPU: path tracing renders; the other methods are refused (bad input).
+    # A GPU: path tracing, photon mapping and radiosity render; the other
+    # methods are refused (bad input).
     expect_exit 0 "render --device cuda" -- "$ILLUM" render cornell --device cuda --spp 4 --width 32 --height 32 -q -o cuda.pfm
     expect_file cuda.pfm "render --device cuda"
-    expect_exit 1 "render --device cuda --method radiosity" -- "$ILLUM" render cornell --device cuda --method radiosity -o bad.exr
-    expect_stderr "method pt" "render --device cuda --method radiosity"
-    expect_no_file bad.exr "render --device cuda --method radiosity"
+    expect_exit 0 "render --device cuda --method photon" -- "$ILLUM" render cornell --device cuda --method photon --spp 4 --width 32 --height 32 -q -o photon.pfm
+    expect_file photon.pfm "render --device cuda --method photon"
+    expect_exit 0 "render --device cuda --method radiosity" -- "$ILLUM" render cornell --device cuda --method radiosity --spp 1 --width 32 --height 32 -q -o rad.pfm
+    expect_file rad.pfm "render --device cuda --method radiosity"
+    expect_exit 1 "render --device cuda --method sppm" -- "$ILLUM" render cornell --device cuda --method sppm -o bad.exr
+    expect_stderr "method pt, photon or radiosity" "render --device cuda --method sppm"
+    expect_no_file bad.exr "render --device cuda --method sppm"
 else
     # No GPU, or no CUDA in the build: exit 3, a reason, no output file.
     expect_exit 3 "render --device cuda" -- "$ILLUM" render cornell --device cuda --spp 1 -o cuda.exr
     expect_no_file cuda.exr "render --device cuda"
+    for m in photon radiosity; do
+        expect_exit 3 "render --device cuda --method $m" -- "$ILLUM" render cornell --device cuda --method $m -o cuda.exr
+        expect_no_file cuda.exr "render --device cuda --method $m"
+    done
     if [ "$cuda" = off ]; then
         expect_stderr "built without CUDA" "render --device cuda, no CUDA build"
     else

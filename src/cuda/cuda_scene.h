@@ -1,0 +1,72 @@
+/* The kernel scene (kernel/kernel_scene.h) on the GPU: its flat arrays
+ * copied with cudaMalloc/cudaMemcpy as they are, and the ilk_scene view
+ * with device pointers that the kernels take by value.  Shared by the .cu
+ * files of the path and photon kernels. */
+#ifndef IL_CUDA_SCENE_H
+#define IL_CUDA_SCENE_H
+
+#include <string.h>
+#include "cuda/cuda_util.h"
+#include "kernel/kernel_scene.h"
+
+/* Allocates count elements (at least one, so a pointer is always valid)
+ * and copies src in. */
+template <typename T> static il_status il_cuda_upload(T **dst, const T *src, size_t count, const char *what,
+                                                      il_error *err)
+{
+    *dst = NULL;
+    size_t bytes = sizeof(T) * (count ? count : 1);
+    il_status st = il_cuda_check(cudaMalloc((void **)dst, bytes), what, err);
+    if (st == IL_OK && count)
+        st = il_cuda_check(cudaMemcpy(*dst, src, sizeof(T) * count, cudaMemcpyHostToDevice), what, err);
+    return st;
+}
+
+template <typename T> static il_status il_cuda_alloc(T **dst, size_t count, const char *what, il_error *err)
+{
+    *dst = NULL;
+    return il_cuda_check(cudaMalloc((void **)dst, sizeof(T) * (count ? count : 1)), what, err);
+}
+
+typedef struct il_cuda_scene {
+    ilk_bvh_node *nodes;
+    ilk_tri *tris;
+    ilk_material *materials;
+    uint32_t *lights;
+    float *light_cdf;
+    ilk_scene view;                /* ks->view with the device pointers */
+} il_cuda_scene;
+
+static inline void il_cuda_scene_free(il_cuda_scene *d)
+{
+    cudaFree(d->nodes);
+    cudaFree(d->tris);
+    cudaFree(d->materials);
+    cudaFree(d->lights);
+    cudaFree(d->light_cdf);
+    memset(d, 0, sizeof *d);
+}
+
+/* On failure everything is freed. */
+static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene *d, il_error *err)
+{
+    memset(d, 0, sizeof *d);
+    il_status st;
+    if ((st = il_cuda_upload(&d->nodes, ks->bvh.nodes, ks->bvh.num_nodes, "uploading the BVH", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->tris, ks->bvh.tris, ks->bvh.num_tris, "uploading the triangles", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->materials, ks->materials, ks->num_materials, "uploading the materials", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->lights, ks->lights, ks->num_lights, "uploading the lights", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->light_cdf, ks->light_cdf, ks->num_lights + 1, "uploading the light CDF", err)) != IL_OK) {
+        il_cuda_scene_free(d);
+        return st;
+    }
+    d->view = ks->view;
+    d->view.bvh.nodes = d->nodes;
+    d->view.bvh.tris = d->tris;
+    d->view.materials = d->materials;
+    d->view.lights = d->lights;
+    d->view.light_cdf = d->light_cdf;
+    return IL_OK;
+}
+
+#endif
