@@ -237,8 +237,9 @@ int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env,
 int cli_devices_list(void);
 bool cli_device_from_name(const char *name, bool *cuda);
 int cli_device_require_cuda(void);
-/* Renders --method pt with --spp on the GPU into *out (freed with
- * il_image_free); IL_ERR_INVALID for what the GPU kernel does not do yet. */
+/* Renders --method pt, photon or radiosity on the GPU into *out (freed
+ * with il_image_free); IL_ERR_INVALID for what the GPU kernels do not do
+ * (other methods, a time limit, scenes the GPU scene packer refuses). */
 il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
                                  uint32_t height, il_image *out, il_render_stats *rs, il_error *err);
 

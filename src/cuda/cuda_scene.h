@@ -6,6 +6,7 @@
 #define IL_CUDA_SCENE_H
 
 #include <string.h>
+#include "cuda/cuda_backend.h"
 #include "cuda/cuda_util.h"
 #include "kernel/kernel_scene.h"
 
@@ -67,6 +68,25 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.lights = d->lights;
     d->view.light_cdf = d->light_cdf;
     return IL_OK;
+}
+
+/* An image render's start: a non-empty image, a usable GPU, the kernel
+ * scene built (il_kscene_build) and uploaded.  On failure nothing is left
+ * to free; on success free d, then ks. */
+static inline il_status il_cuda_scene_prepare(const il_scene *scene, uint32_t width, uint32_t height,
+                                              uint32_t max_depth, uint64_t seed, il_kscene *ks, il_cuda_scene *d,
+                                              il_error *err)
+{
+    if (width == 0 || height == 0)
+        return il_fail(err, IL_ERR_INVALID, "CUDA render: empty image");
+    il_status st = il_cuda_require_device(err);
+    if (st != IL_OK)
+        return st;
+    if ((st = il_kscene_build(scene, width, height, max_depth, seed, ks, err)) != IL_OK)
+        return st;
+    if ((st = il_cuda_scene_upload(ks, d, err)) != IL_OK)
+        il_kscene_free(ks);
+    return st;
 }
 
 #endif

@@ -16,6 +16,7 @@
  * steps but the stored-photon count. */
 #include <cub/device/device_radix_sort.cuh>
 #include "cuda/cuda_backend.h"
+#include "cuda/cuda_image.h"
 #include "cuda/cuda_scene.h"
 #include "kernel/kernel_photon_gather.h"
 #include "kernel/kernel_photon_map.h"
@@ -51,33 +52,16 @@ __global__ static void photon_reorder_kernel(const ilk_photon *slots, const uint
         *count = i + 1;
 }
 
-__global__ static void photon_gather_kernel(ilk_scene sc, ilk_grid g, float radius, uint32_t first, uint32_t n,
-                                            float *sum)
-{
-    uint32_t x = blockIdx.x * blockDim.x + threadIdx.x, y = blockIdx.y * blockDim.y + threadIdx.y;
-    if (x >= sc.width || y >= sc.height)
-        return;
-    float r = 0.0f, gg = 0.0f, b = 0.0f;
-    for (uint32_t s = first; s < first + n; s++) {
-        ilk_vec3 L = ilk_photon_pixel_sample(&sc, &g, radius, x, y, s);
-        if (isfinite(L.x) && isfinite(L.y) && isfinite(L.z)) {
-            r += L.x;
-            gg += L.y;
-            b += L.z;
-        }
+/* One gathered sample of a pixel (il_cuda_pixel_kernel's sampler). */
+struct photon_sampler {
+    ilk_scene sc;
+    ilk_grid g;
+    float radius;
+    __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s) const
+    {
+        return ilk_photon_pixel_sample(&sc, &g, radius, x, y, s);
     }
-    float *o = sum + 3 * ((size_t)y * sc.width + x);
-    o[0] += r;
-    o[1] += gg;
-    o[2] += b;
-}
-
-__global__ static void scale_kernel(float *v, size_t n, float s)
-{
-    size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
-    if (i < n)
-        v[i] *= s;
-}
+};
 
 /* The device photon map. */
 typedef struct dev_map {
@@ -221,57 +205,22 @@ extern "C" il_status il_cuda_render_photon(const il_scene *scene, uint32_t width
                                            uint32_t max_depth, uint64_t seed, uint32_t num_emitted, float radius,
                                            float *rgb, il_cuda_photon_stats *stats, il_error *err)
 {
-    if (width == 0 || height == 0)
-        return il_fail(err, IL_ERR_INVALID, "CUDA render: empty image");
-    il_status st = il_cuda_require_device(err);
+    il_kscene ks;
+    il_cuda_scene d;
+    il_status st = il_cuda_scene_prepare(scene, width, height, max_depth, seed, &ks, &d, err);
     if (st != IL_OK)
         return st;
-    il_kscene ks;
-    if ((st = il_kscene_build(scene, width, height, max_depth, seed, &ks, err)) != IL_OK)
-        return st;
-    il_cuda_scene d;
-    if ((st = il_cuda_scene_upload(&ks, &d, err)) != IL_OK) {
-        il_kscene_free(&ks);
-        return st;
-    }
     il_cuda_photon_stats local;
     if (!stats)
         stats = &local;
     memset(stats, 0, sizeof *stats);
     dev_map m;
-    float *sum = NULL;
-    size_t values = 3 * (size_t)width * height;
     if ((st = build_map(&d, num_emitted, radius, &m, stats, err)) == IL_OK) {
-        if ((st = il_cuda_alloc(&sum, values, "allocating the image", err)) == IL_OK &&
-            (st = il_cuda_check(cudaMemset(sum, 0, sizeof(float) * values), "cudaMemset", err)) == IL_OK) {
-            cudaEvent_t e0, e1;
-            cudaEventCreate(&e0);
-            cudaEventCreate(&e1);
-            uint32_t total = spp ? spp : 1;
-            dim3 block(8, 8), grid((width + 7) / 8, (height + 7) / 8);
-            cudaEventRecord(e0);
-            /* Launches of a few samples each, added into sum. */
-            for (uint32_t first = 0; first < total && st == IL_OK; first += 4) {
-                uint32_t n = total - first < 4 ? total - first : 4;
-                photon_gather_kernel<<<grid, block>>>(d.view, m.grid, radius, first, n, sum);
-                st = il_cuda_check(cudaGetLastError(), "launching the gather kernel", err);
-            }
-            cudaEventRecord(e1);
-            if (st == IL_OK) {
-                scale_kernel<<<blocks_for(values, 256), 256>>>(sum, values, 1.0f / (float)total);
-                if ((st = il_cuda_check(cudaDeviceSynchronize(), "the gather kernel", err)) == IL_OK)
-                    st = il_cuda_check(cudaMemcpy(rgb, sum, sizeof(float) * values, cudaMemcpyDeviceToHost),
-                                       "downloading the image", err);
-                float ms = 0.0f;
-                cudaEventElapsedTime(&ms, e0, e1);
-                stats->seconds_gather = 1e-3 * ms;
-            }
-            cudaEventDestroy(e0);
-            cudaEventDestroy(e1);
-        }
+        /* Launches of a few samples each. */
+        st = il_cuda_progressive_image(photon_sampler{d.view, m.grid, radius}, width, height, spp ? spp : 1, 4, rgb,
+                                       &stats->seconds_gather, "the gather kernel", err);
         dev_map_free(&m);
     }
-    cudaFree(sum);
     il_cuda_scene_free(&d);
     il_kscene_free(&ks);
     return st;

@@ -47,17 +47,8 @@ typedef struct ilk_rad_scene {
     float epsilon;             /* the ray offset, as il_trace_epsilon */
 } ilk_rad_scene;
 
-/* core/rng.h's il_hash64 and il_pcg32, device-safe. */
-IL_DEVICE_INLINE uint64_t ilk_mix64(uint64_t x)
-{
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31;
-    return x;
-}
-
+/* core/rng.h's il_pcg32, device-safe (ilk_mix64, kernel_sobol.h, is its
+ * il_hash64). */
 IL_DEVICE_INLINE ilk_rng ilk_pcg32_seed(uint64_t seed, uint64_t stream)
 {
     ilk_rng r;
@@ -87,7 +78,7 @@ IL_DEVICE_INLINE void ilk_rng_advance(ilk_rng *r, uint64_t delta)
     r->state = acc_mult * r->state + acc_plus;
 }
 
-/* A keyed permutation of [0, n) (rad_ff_ray.c's permute: an invertible
+/* A keyed permutation of [0, n) (an invertible
  * hash on the enclosing power of two, cycle-walked; Kensler 2013). */
 IL_DEVICE_INLINE uint32_t ilk_permute(uint32_t k, uint32_t n, uint32_t key)
 {
@@ -108,7 +99,8 @@ IL_DEVICE_INLINE uint32_t ilk_permute(uint32_t k, uint32_t n, uint32_t key)
     return k;
 }
 
-/* sin and cos on [-pi/4, pi/4] by Taylor polynomials, as rad_ff_ray.c. */
+/* sin and cos on [-pi/4, pi/4] by Taylor polynomials (the first omitted
+ * terms are below 1e-9, under float rounding): no sinf/cosf in the disc map. */
 IL_DEVICE_INLINE void ilk_sincos_quarter(float x, float *sn, float *cs)
 {
     float x2 = x * x;

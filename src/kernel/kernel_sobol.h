@@ -31,8 +31,9 @@ IL_DEVICE_INLINE uint32_t ilk_reverse_bits(uint32_t x)
 #endif
 }
 
-/* core/rng.h's il_hash64 and il_hash_combine. */
-IL_DEVICE_INLINE uint64_t ilk_sobol_hash64(uint64_t x)
+/* core/rng.h's il_hash64 and il_hash_combine (ilk_path_sample's pcg
+ * streams use another finaliser, kernel_path.h's ilk_hash64). */
+IL_DEVICE_INLINE uint64_t ilk_mix64(uint64_t x)
 {
     x ^= x >> 30;
     x *= 0xbf58476d1ce4e5b9ULL;
@@ -44,7 +45,7 @@ IL_DEVICE_INLINE uint64_t ilk_sobol_hash64(uint64_t x)
 
 IL_DEVICE_INLINE uint64_t ilk_hash_combine(uint64_t a, uint64_t b)
 {
-    return ilk_sobol_hash64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
+    return ilk_mix64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
 }
 
 /* Sobol dimension 1 of a bit-reversed index, bit-reversed (the "superset
@@ -75,7 +76,7 @@ IL_DEVICE_INLINE float ilk_u32_to_float(uint32_t x) { return (float)(x >> 8) * (
 IL_DEVICE_INLINE ilk_sobol ilk_sobol_start(uint64_t seed, uint64_t pixel, uint32_t sample_index)
 {
     ilk_sobol s;
-    s.key = ilk_hash_combine(ilk_sobol_hash64(seed), pixel);
+    s.key = ilk_hash_combine(ilk_mix64(seed), pixel);
     s.index_reversed = ilk_reverse_bits(sample_index);
     s.dim = 0;
     return s;
@@ -86,7 +87,7 @@ IL_DEVICE_INLINE ilk_sobol ilk_sobol_start(uint64_t seed, uint64_t pixel, uint32
 IL_DEVICE_INLINE void ilk_sobol_pair_seeds(const ilk_sobol *s, uint32_t dim, uint32_t *x, uint32_t *y,
                                            uint32_t *shuffle)
 {
-    uint64_t key = ilk_sobol_hash64(s->key + 0x9e3779b97f4a7c15ULL * (uint64_t)(dim + 1));
+    uint64_t key = ilk_mix64(s->key + 0x9e3779b97f4a7c15ULL * (uint64_t)(dim + 1));
     *x = (uint32_t)key;
     *y = (uint32_t)(key >> 32);
     *shuffle = (uint32_t)((key * 0xda942042e4dd58b5ULL) >> 32);

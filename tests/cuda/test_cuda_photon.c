@@ -9,8 +9,7 @@
  * for ctest) without a GPU or driver, as on CI. */
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
-#include "cuda/cuda_backend.h"
+#include "cuda_test.h"
 #include "kernel/kernel_photon_map.h"
 #include "scene/scene.h"
 
@@ -22,21 +21,12 @@
 
 int main(void)
 {
-    il_cuda_device dev;
-    il_cuda_versions v;
-    int count = 0;
-    char why[256];
-    il_error err = {0};
-    if (il_cuda_query(&dev, 1, &count, &v, why, sizeof why, &err) != IL_OK || count == 0) {
-        printf("SKIP: no GPU: %s\n", count == 0 ? why : err.message);
+    if (cuda_test_require_gpu() != 0)
         return 77;
-    }
-    printf("GPU: %s, compute capability %d.%d\n", dev.name, dev.cc_major, dev.cc_minor);
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    il_error err = {0};
+    il_scene *s = cuda_test_cornell();
     if (!s)
         return check_report();
-    CHECK_OK(il_scene_commit(s, &err), &err);
     il_kscene ks;
     CHECK_OK(il_kscene_build(s, W, H, 8, 3, &ks, &err), &err);
 
@@ -79,33 +69,7 @@ int main(void)
            ps.seconds_build, ps.seconds_gather);
     il_kphoton_render(&ks, &cpu, RADIUS, SPP, k);
 
-    il_film *film = NULL;
-    CHECK_OK(il_film_create(W, H, &film, &err), &err);
-    il_render_desc rd = {.method = IL_METHOD_PT, .spp = 256, .max_depth = 8, .seed = 9};
-    CHECK_OK(il_render(s, film, &rd, NULL, &err), &err);
-    il_image img = {0};
-    CHECK_OK(il_film_resolve(film, &img, &err), &err);
-    double mg[3] = {0, 0, 0}, mk[3] = {0, 0, 0}, mr[3] = {0, 0, 0};
-    int off = 0;
-    for (int i = 0; i < W * H; i++)
-        for (int c = 0; c < 3; c++) {
-            float a = g[3 * i + c], b = k[3 * i + c];
-            mg[c] += a / (W * H);
-            mk[c] += b / (W * H);
-            mr[c] += (img.rgb ? img.rgb[3 * i + c] : 0.0f) / (W * H);
-            if (fabsf(a - b) > 0.02f * fabsf(b) + 1e-4f)
-                off++;
-        }
-    printf("mean gpu (%.5f %.5f %.5f) kernel on cpu (%.5f %.5f %.5f) il_render pt (%.5f %.5f %.5f); "
-           "%d of %d pixel values differ from the cpu kernel by more than 2%%\n",
-           mg[0], mg[1], mg[2], mk[0], mk[1], mk[2], mr[0], mr[1], mr[2], off, 3 * W * H);
-    for (int c = 0; c < 3; c++) {
-        CHECK_REL(mg[c], mk[c], 0.01);
-        CHECK_REL(mg[c], mr[c], 0.05);
-    }
-    CHECK(off <= 3 * W * H / 20);
-    il_image_free(&img);
-    il_film_release(film);
+    cuda_test_compare(s, W, H, g, k, 256, 0.05);
     free(g);
     free(k);
     free(gp);

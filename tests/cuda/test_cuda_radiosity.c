@@ -8,8 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "check.h"
-#include "cuda/cuda_backend.h"
+#include "cuda_test.h"
 #include "kernel/kernel_radiosity_scene.h"
 #include "methods/radiosity/rad.h"
 #include "scene/scene.h"
@@ -74,21 +73,11 @@ static void compare(il_scene *s, uint32_t subdivisions, uint32_t samples, bool c
 
 int main(void)
 {
-    il_cuda_device dev;
-    il_cuda_versions v;
-    int count = 0;
-    char why[256];
-    il_error err = {0};
-    if (il_cuda_query(&dev, 1, &count, &v, why, sizeof why, &err) != IL_OK || count == 0) {
-        printf("SKIP: no GPU: %s\n", count == 0 ? why : err.message);
+    if (cuda_test_require_gpu() != 0)
         return 77;
-    }
-    printf("GPU: %s, compute capability %d.%d\n", dev.name, dev.cc_major, dev.cc_minor);
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    il_scene *s = cuda_test_cornell();
     if (!s)
         return check_report();
-    CHECK_OK(il_scene_commit(s, &err), &err);
     compare(s, 3, 1024, true);
     compare(s, 5, 256, false);
     il_scene_release(s);

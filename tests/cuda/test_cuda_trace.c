@@ -6,9 +6,8 @@
  * GPU or no driver: the CI machines have none. */
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
 #include "core/rng.h"
-#include "cuda/cuda_backend.h"
+#include "cuda_test.h"
 #include "scene/scene.h"
 
 static int compare(const char *name, const char *path, uint32_t n)
@@ -77,16 +76,8 @@ static int compare(const char *name, const char *path, uint32_t n)
 
 int main(void)
 {
-    il_cuda_device dev;
-    il_cuda_versions v;
-    int count = 0;
-    char why[256];
-    il_error err = {0};
-    if (il_cuda_query(&dev, 1, &count, &v, why, sizeof why, &err) != IL_OK || count == 0) {
-        printf("SKIP: no GPU: %s\n", count == 0 ? why : err.message);
+    if (cuda_test_require_gpu() != 0)
         return 77;
-    }
-    printf("GPU: %s, compute capability %d.%d\n", dev.name, dev.cc_major, dev.cc_minor);
     compare("cornell", "cornell", 1u << 20);
     compare("bunny", IL_SHARED_DIR "/scenes/stanford-bunny/bun_zipper.ply", 1u << 20);
     return check_report();

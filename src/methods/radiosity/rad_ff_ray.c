@@ -22,62 +22,19 @@
 
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "kernel/kernel_radiosity.h"
 #include "methods/radiosity/rad_ff_internal.h"
 
 #define IL_FF_RAY_BATCH 256
 
-/* A keyed permutation of [0, n): an invertible hash on the enclosing power
- * of two (xor, odd multiply and xor-shift are each bijective modulo 2^b),
- * cycle-walked until it lands below n (the idea of Kensler 2013, "Correlated
- * Multi-Jittered Sampling", section 3). */
-static uint32_t permute(uint32_t k, uint32_t n, uint32_t key)
-{
-    uint32_t mask = n - 1;
-    mask |= mask >> 1;
-    mask |= mask >> 2;
-    mask |= mask >> 4;
-    mask |= mask >> 8;
-    mask |= mask >> 16;
-    do {
-        k ^= key;
-        k = (k * 0x9e3779b1u) & mask;
-        k ^= (k & mask) >> 3;
-        k = (k * 0x85ebca6bu + (key | 1u)) & mask;
-        k ^= (k & mask) >> 7;
-        k = (k * 0xc2b2ae35u) & mask;
-    } while (k >= n);
-    return k;
-}
-
-/* sin and cos of x in [-pi/4, pi/4] by their Taylor polynomials (the first
- * omitted terms are below 1e-9, under float rounding). */
-static inline void sincos_quarter(float x, float *sn, float *cs)
-{
-    float x2 = x * x;
-    *sn = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-    *cs = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
-}
-
-/* Malley's method: Shirley and Chiu's concentric map of [0,1)^2 onto the
- * unit disc (pbrt-v4 A.5.1), lifted to the hemisphere; the second wedge's
- * angle pi/2 - phi is written as a swap of sin and cos so both stay in
- * [-pi/4, pi/4].  Returns a cosine-distributed local direction (z up). */
+/* The rays of a row are the GPU kernel's (kernel/kernel_radiosity.h, one
+ * source for both): ilk_permute, a keyed permutation of [0, n) (Kensler
+ * 2013, "Correlated Multi-Jittered Sampling", section 3), and Malley's
+ * cosine directions on the concentric disc. */
 static inline il_vec3 cosine_direction(il_vec2 u)
 {
-    float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
-    if (ox == 0.0f && oy == 0.0f)
-        return v3(0.0f, 0.0f, 1.0f);
-    float r, sn, cs, dx, dy;
-    if (fabsf(ox) > fabsf(oy)) {
-        r = ox;
-        sincos_quarter(0.25f * IL_PI * (oy / ox), &sn, &cs);
-        dx = r * cs, dy = r * sn;
-    } else {
-        r = oy;
-        sincos_quarter(0.25f * IL_PI * (ox / oy), &sn, &cs);
-        dx = r * sn, dy = r * cs;
-    }
-    return v3(dx, dy, sqrtf(il_maxf(0.0f, 1.0f - dx * dx - dy * dy)));
+    ilk_vec3 d = ilk_concentric_cosine(u.x, u.y);
+    return v3(d.x, d.y, d.z);
 }
 
 /* A uniform point on the patch for u in [0,1)^2: a quad is two triangles
@@ -183,7 +140,7 @@ void il_ff_ray_row_ordered(const il_patch_mesh *mesh, uint32_t samples, uint64_t
         for (uint32_t k = 0; k < strata; k++) {
             float j0 = il_pcg32_float(&rng), j1 = il_pcg32_float(&rng);
             float j2 = il_pcg32_float(&rng), j3 = il_pcg32_float(&rng);
-            uint32_t d = permute(k, strata, key);
+            uint32_t d = ilk_permute(k, strata, key);
             il_vec2 up = v2(((float)(k % m) + j0) * inv_m, ((float)(k / m) + j1) * inv_m);
             il_vec2 ud = v2(((float)(d % m) + j2) * inv_m, ((float)(d / m) + j3) * inv_m);
             order[2 * d] = v2(il_minf(up.x, 0x1.fffffep-1f), il_minf(up.y, 0x1.fffffep-1f));
@@ -204,7 +161,7 @@ void il_ff_ray_row_ordered(const il_patch_mesh *mesh, uint32_t samples, uint64_t
                 float j0 = il_pcg32_float(&rng), j1 = il_pcg32_float(&rng);
                 float j2 = il_pcg32_float(&rng), j3 = il_pcg32_float(&rng);
                 if (k < strata) {
-                    uint32_t d = permute(k, strata, key);
+                    uint32_t d = ilk_permute(k, strata, key);
                     up = v2(((float)(k % m) + j0) * inv_m, ((float)(k / m) + j1) * inv_m);
                     ud = v2(((float)(d % m) + j2) * inv_m, ((float)(d / m) + j3) * inv_m);
                     up = v2(il_minf(up.x, 0x1.fffffep-1f), il_minf(up.y, 0x1.fffffep-1f));
