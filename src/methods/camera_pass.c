@@ -76,9 +76,7 @@ void il_camera_pass(const il_scene *scene, il_film *film, const il_render_desc *
 
 /* ---- the pass ---- */
 
-il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_render_desc *desc,
-                               il_camera_tile_fn tile_fn, const void *method, size_t scratch_bytes,
-                               il_camera_pass_result *out, il_error *err)
+il_camera_pass_ctx il_camera_pass_ctx_make(const il_scene *scene, il_film *film, const il_render_desc *desc)
 {
     il_camera_pass_ctx ctx;
     memset(&ctx, 0, sizeof ctx);
@@ -89,6 +87,14 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
     ctx.sampler = desc->sampler;
     ctx.filter = desc->filter;
     il_camera_init(&ctx.cam, &scene->camera.desc, ctx.width, ctx.height);
+    return ctx;
+}
+
+il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_render_desc *desc,
+                               il_camera_tile_fn tile_fn, const void *method, size_t scratch_bytes,
+                               il_camera_pass_result *out, il_error *err)
+{
+    il_camera_pass_ctx ctx = il_camera_pass_ctx_make(scene, film, desc);
 
     bool timed = desc->time_limit > 0.0;
     uint32_t spp = desc->spp ? desc->spp : (timed ? UINT32_MAX : 16u);

@@ -48,6 +48,9 @@ typedef struct il_camera_pass_ctx {
     il_filter_type filter;
 } il_camera_pass_ctx;
 
+/* The pass context of film and desc (camera of the scene's camera). */
+il_camera_pass_ctx il_camera_pass_ctx_make(const il_scene *scene, il_film *film, const il_render_desc *desc);
+
 /* One tile of one pass: samples first..first+count-1 of every pixel of
  * [x0, x1) x [y0, y1).  The callback adds what it counts to rays and
  * nonfinite (il_camera_tile_add does the latter). */

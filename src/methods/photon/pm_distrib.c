@@ -119,15 +119,7 @@ il_status il_pm_camera_pass_split(const il_scene *scene, il_film *film, const il
                                   il_camera_pass_result *out, il_error *err)
 {
     const il_distrib *d = desc->distrib;
-    il_camera_pass_ctx ctx;
-    memset(&ctx, 0, sizeof ctx);
-    ctx.film = film;
-    ctx.width = il_film_width(film);
-    ctx.height = il_film_height(film);
-    ctx.seed = desc->seed;
-    ctx.sampler = desc->sampler;
-    ctx.filter = desc->filter;
-    il_camera_init(&ctx.cam, &scene->camera.desc, ctx.width, ctx.height);
+    il_camera_pass_ctx ctx = il_camera_pass_ctx_make(scene, film, desc);
     uint32_t spp = desc->spp ? desc->spp : 16u;
     int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     uint32_t tiles_x = (ctx.width + IL_PM_DISTRIB_TILE - 1) / IL_PM_DISTRIB_TILE;
