@@ -51,6 +51,9 @@ static const char *help =
     "  --stats FILE           write render statistics as JSON\n"
     "  --write-every S        also write the outputs every S seconds while rendering\n"
     "                         (after the pass that crosses each mark)\n"
+    "  --checkpoint-every S   under mpirun (pt): save the finished tiles every S seconds;\n"
+    "                         the same command run again continues from them\n"
+    "  --checkpoint FILE      the checkpoint file (default: the first output + .ckpt)\n"
     "  --quiet                no progress bar and no warnings\n"
     "\n"
     "While rendering, a progress bar with ETA and rays/s is drawn on stderr when it\n"
@@ -64,6 +67,7 @@ typedef struct render_options {
     int num_outputs;
     const char *stats;
     double write_every;              /* --write-every seconds; 0: only at the end */
+    cli_mpi_job mpi;                 /* --checkpoint, --checkpoint-every (under mpirun) */
     uint32_t width, height;
     il_render_desc desc;
     il_write_desc write;
@@ -295,6 +299,13 @@ static int parse_options(int argc, char **argv, render_options *o)
             VALUE();
             if (!cli_parse_double(a, v, 0.001, 1e9, &o->write_every))
                 return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--checkpoint-every")) {
+            VALUE();
+            if (!cli_parse_double(a, v, 0.001, 1e9, &o->mpi.checkpoint_every))
+                return IL_EXIT_BAD_INPUT;
+        } else if (!strcmp(a, "--checkpoint")) {
+            VALUE();
+            o->mpi.checkpoint = v;
         } else if (!strcmp(a, "--exr-float")) {
             o->write.exr_precision = IL_EXR_FLOAT;
         } else if (!strcmp(a, "--exposure")) {
@@ -421,6 +432,10 @@ int cmd_render(int argc, char **argv)
         return rc;
     if (cli_mpi_rank() > 0)
         o.quiet = true; /* under mpirun only rank 0 reports */
+    if ((o.mpi.checkpoint_every > 0.0 || o.mpi.checkpoint) && !cli_mpi_active()) {
+        cli_error("--checkpoint-every and --checkpoint work under mpirun (mpirun -np 1 for one process)");
+        return IL_EXIT_USAGE;
+    }
     if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK)
         return rc;
     char default_out[512];
@@ -428,6 +443,8 @@ int cmd_render(int argc, char **argv)
         default_output(o.scene, default_out, sizeof default_out);
         o.outputs[o.num_outputs++] = default_out;
     }
+    o.mpi.output = o.outputs[0];
+    o.mpi.write_every = o.write_every;
 
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
@@ -472,7 +489,7 @@ int cmd_render(int argc, char **argv)
     il_render_stats rs = {0};
     il_image cuda_img = {0};
     il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &cuda_img, &rs, &err)
-                   : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &rs, !o.quiet, &err)
+                   : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &o.mpi, &rs, !o.quiet, &err)
                                       : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.m.rad);

@@ -60,9 +60,8 @@ expect_exit 1 "rank without its scene" -- "${MPI[@]}" -np 1 "$ILLUM" render "${r
     -o bad2.pfm : -np 1 "$ILLUM" render no-such-scene.obj --spp 6 -q -o bad2.pfm
 expect_stderr "rank 1 failed before the render began" "rank without its scene"
 expect_no_file bad2.pfm "rank without its scene"
+# (--time under mpirun: test_cli_mpi_checkpoint.sh)
 # What is not distributed says so.
-expect_exit 1 "--time under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --time 1 -q -o t.pfm
-expect_stderr "use --spp, not --time" "--time under mpirun"
 # (photon, sppm and radiosity run split: test_cli_mpi_methods.sh)
 expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --method rsm -q -o r.pfm
 expect_stderr "supports --method pt, photon, sppm and radiosity" "rsm under mpirun"
