@@ -1,0 +1,182 @@
+/* One render split across processes through the library's il_distrib hook
+ * (illum.h, docs/distributed.md), without MPI: each "process" is a thread
+ * with its own film, the exchange a shared buffer between two barriers.
+ * The films of all ranks summed must be the single-process film bit for
+ * bit, for photon mapping (with and without final gather), SPPM and
+ * progressive radiosity (shooting and gathering); a malformed distrib and a
+ * failing exchange are errors, not crashes. */
+#include <pthread.h>
+#include <string.h>
+
+#include "check.h"
+#include "illum/illum.h"
+
+#define W 48
+#define H 48
+#define MAX_RANKS 3
+
+typedef struct exchange {
+    pthread_barrier_t barrier;
+    int size;
+    const void *data[MAX_RANKS];
+    size_t bytes[MAX_RANKS];
+} exchange;
+
+typedef struct rank_job {
+    exchange *x;
+    il_distrib distrib;
+    const il_scene *scene;
+    il_render_desc desc;
+    il_film *film;
+    il_status status;
+    il_error err;
+} rank_job;
+
+/* il_distrib.allgather: every rank's bytes in rank order. */
+static int allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
+{
+    rank_job *job = user;
+    exchange *x = job->x;
+    x->data[job->distrib.rank] = data;
+    x->bytes[job->distrib.rank] = bytes;
+    pthread_barrier_wait(&x->barrier);
+    size_t total = 0;
+    for (int r = 0; r < x->size; r++)
+        total += x->bytes[r];
+    int rc = 0;
+    *out = total ? malloc(total) : NULL;
+    if (total && !*out)
+        rc = 1;
+    for (int r = 0, at = 0; r < x->size; r++) {
+        counts[r] = x->bytes[r];
+        if (*out && x->bytes[r])
+            memcpy((char *)*out + at, x->data[r], x->bytes[r]);
+        at += (int)x->bytes[r];
+    }
+    /* Nobody may change its data before everyone has copied it. */
+    pthread_barrier_wait(&x->barrier);
+    return rc;
+}
+
+static int failing_allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
+{
+    (void)user, (void)data, (void)bytes, (void)counts;
+    *out = NULL;
+    return 1;
+}
+
+static void *run_rank(void *arg)
+{
+    rank_job *job = arg;
+    job->desc.distrib = &job->distrib;
+    job->status = il_render(job->scene, job->film, &job->desc, NULL, &job->err);
+    return NULL;
+}
+
+/* The render of desc as `size` ranks against one process. */
+static void check_split(const il_scene *scene, il_render_desc desc, int size, const char *what)
+{
+    il_error err = {0};
+    il_film *whole = NULL;
+    CHECK_OK(il_film_create(W, H, &whole, &err), &err);
+    CHECK_OK(il_render(scene, whole, &desc, NULL, &err), &err);
+
+    exchange x = {.size = size};
+    pthread_barrier_init(&x.barrier, NULL, (unsigned)size);
+    rank_job jobs[MAX_RANKS];
+    pthread_t threads[MAX_RANKS];
+    for (int r = 0; r < size; r++) {
+        jobs[r] = (rank_job){.x = &x, .scene = scene, .desc = desc};
+        jobs[r].distrib = (il_distrib){.rank = r, .size = size, .allgather = allgather, .user = &jobs[r]};
+        CHECK_OK(il_film_create(W, H, &jobs[r].film, &err), &err);
+        pthread_create(&threads[r], NULL, run_rank, &jobs[r]);
+    }
+    for (int r = 0; r < size; r++)
+        pthread_join(threads[r], NULL);
+    pthread_barrier_destroy(&x.barrier);
+
+    size_t n = 4 * (size_t)W * H, differ = 0;
+    const double *a = il_film_data(whole);
+    double total = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double sum = 0.0;
+        for (int r = 0; r < size; r++)
+            sum += il_film_data(jobs[r].film)[i];
+        differ += sum != a[i];
+        total += a[i];
+    }
+    for (int r = 0; r < size; r++) {
+        CHECK_OK(jobs[r].status, &jobs[r].err);
+        il_film_release(jobs[r].film);
+    }
+    printf("%-28s %d ranks: %zu of %zu film values differ from one process (film sum %.6g)\n", what,
+           size, differ, n, total);
+    CHECK(differ == 0);
+    CHECK(total > 0.0);
+    il_film_release(whole);
+}
+
+int main(void)
+{
+    il_error err = {0};
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    if (!s)
+        return check_report();
+    CHECK_OK(il_scene_commit(s, &err), &err);
+    il_render_desc base = {.spp = 2, .max_depth = 4, .seed = 7, .threads = 1};
+
+    il_photon_desc pd = {.photons = 20000};
+    il_render_desc photon = base;
+    photon.method = IL_METHOD_PHOTON;
+    photon.photon = &pd;
+    check_split(s, photon, 2, "photon");
+    check_split(s, photon, 3, "photon");
+    il_photon_desc fg = {.photons = 20000, .final_gather = 4};
+    photon.photon = &fg;
+    check_split(s, photon, 2, "photon, final gather");
+
+    il_photon_desc sd = {.photons = 5000};
+    il_render_desc sppm = base;
+    sppm.method = IL_METHOD_SPPM;
+    sppm.spp = 3;
+    sppm.photon = &sd;
+    check_split(s, sppm, 2, "sppm");
+    check_split(s, sppm, 3, "sppm");
+
+    il_render_desc rad = base;
+    rad.method = IL_METHOD_RADIOSITY;
+    il_radiosity_desc shoot = {.subdivisions = 2, .form_factors = IL_FF_RAYCAST, .ray_samples = 256, .max_steps = 60};
+    rad.radiosity = &shoot;
+    check_split(s, rad, 2, "radiosity, shooting");
+    check_split(s, rad, 3, "radiosity, shooting");
+    il_radiosity_desc gather = shoot;
+    gather.solver = IL_SOLVER_JACOBI;
+    gather.max_steps = 8;
+    rad.radiosity = &gather;
+    check_split(s, rad, 2, "radiosity, gathering");
+
+    /* Malformed or failing: errors. */
+    il_film *film = NULL;
+    CHECK_OK(il_film_create(W, H, &film, &err), &err);
+    il_distrib bad = {.rank = 2, .size = 2, .allgather = allgather};
+    photon.photon = &pd;
+    photon.distrib = &bad;
+    CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
+    printf("rank out of range: %s\n", err.message);
+    il_distrib none = {.rank = 0, .size = 2};
+    photon.distrib = &none;
+    CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
+    il_distrib timed = {.rank = 0, .size = 2, .allgather = allgather};
+    photon.distrib = &timed;
+    photon.time_limit = 1.0;
+    CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
+    photon.time_limit = 0.0;
+    il_distrib broken = {.rank = 0, .size = 2, .allgather = failing_allgather};
+    photon.distrib = &broken;
+    CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_RUNTIME);
+    printf("failing exchange: %s\n", err.message);
+    il_film_release(film);
+    il_scene_release(s);
+    return check_report();
+}
