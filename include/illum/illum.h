@@ -348,6 +348,9 @@ typedef struct il_render_progress {
     double time_limit;       /* 0 when rendering a sample count */
     uint64_t rays;           /* rays cast so far */
     const il_film *film;     /* complete after every pass: it may be written */
+    double radius;           /* IL_METHOD_SPPM: the mean photon search radius (metres)
+                                of the pixels that see a diffuse surface, after this
+                                pass; 0 for the other methods */
 } il_render_progress;
 
 /* Called on the calling thread after every pass; return false to stop: il_render
@@ -728,6 +731,12 @@ typedef struct il_bake_mesh {
     float *radiance;           /* 3 per vertex: W/(sr m^2), linear Rec.709 */
     uint32_t *indices;         /* 3 per triangle */
     uint32_t material;         /* the scene material */
+    uint32_t *patches;         /* 1 per triangle: the patch it belongs to (hr: the
+                                  element, a leaf), numbered across the whole bake;
+                                  UINT32_MAX on mirror/glass triangles (no patch).
+                                  A quad patch is 2 triangles: its outline is the
+                                  edges not shared within one patch (the viewer's
+                                  patch boundaries). */
 } il_bake_mesh;
 
 typedef struct il_bake_result {

@@ -6,7 +6,8 @@
  * Per vertex: the radiance interpolated from the patches (patch_vertex.c), zero
  * on mirror/glass triangles (they have no patch); the normal is the
  * area-weighted mean of the normals of its triangles: the patch normal, or
- * for a triangle without a patch the scene triangle's geometric normal. */
+ * for a triangle without a patch the scene triangle's geometric normal.
+ * Per triangle: its patch (il_bake_mesh.patches), for drawing patch outlines. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +52,7 @@ void il_bake_release(il_bake_result *bake)
             free(m->normals);
             free(m->radiance);
             free(m->indices);
+            free(m->patches);
         }
     free(bake->meshes);
     free(bake);
@@ -102,7 +104,8 @@ static il_status fill_mesh(const il_scene *scene, const il_patch_mesh *rm, const
     out->normals = il_calloc(nv1 * 3, sizeof(float), err);
     out->radiance = il_calloc(nv1 * 3, sizeof(float), err);
     out->indices = il_calloc(nt1 * 3, sizeof(uint32_t), err);
-    if (!out->positions || !out->normals || !out->radiance || !out->indices)
+    out->patches = il_malloc(nt1 * sizeof(uint32_t), err);
+    if (!out->positions || !out->normals || !out->radiance || !out->indices || !out->patches)
         return IL_ERR_MEMORY;
     memset(s->lit, 0, nv1 * sizeof *s->lit);
 
@@ -110,6 +113,7 @@ static il_status fill_mesh(const il_scene *scene, const il_patch_mesh *rm, const
         uint32_t t = s->order[first + k];
         const uint32_t *tri = rm->tri_indices + 3 * (size_t)t;
         uint32_t patch = rm->tri_patch[t];
+        out->patches[k] = patch;     /* IL_NO_PATCH is UINT32_MAX, as documented */
         il_vec3 a = rm->positions[tri[0]], b = rm->positions[tri[1]], c = rm->positions[tri[2]];
         float area = 0.5f * v3_length(v3_cross(v3_sub(b, a), v3_sub(c, a)));
         il_vec3 n = patch != IL_NO_PATCH
@@ -240,6 +244,7 @@ static bool watch_patches(const il_patch_mesh *mesh, const float *radiance, void
             free(cur.meshes[i].normals);
             free(cur.meshes[i].radiance);
             free(cur.meshes[i].indices);
+            free(cur.meshes[i].patches);
         }
     free(cur.meshes);
     return go;

@@ -36,6 +36,7 @@ void il_view_request(viewer *v, bool preview)
     if (il_view_mesh_mode(v)) {
         bool have = v->has_mesh && v->mesh_final && v->mesh_method == v->method;
         if (!have && !(v->baking && v->bake_method == v->method)) {
+            il_view_forget_layer(v);
             il_view_worker_request(&v->worker, &c, v->method, false, true);
             v->looks = 0;
             v->baking = true;
@@ -44,6 +45,7 @@ void il_view_request(viewer *v, bool preview)
         return;
     }
     v->baking = false;
+    il_view_forget_layer(v);
     il_view_worker_request(&v->worker, &c, v->method, preview, false);
     v->previewing = preview;
 }
@@ -72,15 +74,22 @@ static void draw(viewer *v)
 static void update_title(viewer *v, uint32_t passes, double secs, uint64_t rays, bool done,
                          bool failed)
 {
-    char t[512], conv[64] = "";
+    char t[512], conv[64] = "", patches[64] = "", layer[64] = "";
     if (v->unshot >= 0.0)             /* the radiosity solve's convergence */
         snprintf(conv, sizeof conv, " - step %u, unshot %.3g%%", v->rad_steps,
                  100.0 * v->unshot);
+    else if (v->method == IL_METHOD_SPPM && v->radius > 0.0 && !v->shown_preview)
+        snprintf(conv, sizeof conv, " - radius %.3g m", v->radius);   /* SPPM's */
+    if (v->mesh_specular && v->layer_ready)   /* the path-traced mirror and glass */
+        snprintf(layer, sizeof layer, " - specular layer %u spp", passes);
+    if (v->patch_lines)
+        snprintf(patches, sizeof patches, " - patch boundaries (%u patches)", v->num_patches);
     if (il_view_mesh_ready(v)) {              /* the result, or a look at the solve so far */
-        snprintf(t, sizeof t, "illum view %s - %s mesh (%d triangles)%s - EV %+.1f linear%s%s%s",
+        snprintf(t, sizeof t,
+                 "illum view %s - %s mesh (%d triangles)%s%s - EV %+.1f linear%s%s%s%s",
                  v->o->scene_name, cli_method_name(v->method), (int)(v->mesh_indices / 3),
-                 v->mesh_final ? v->mesh_conv : conv, v->exposure,
-                 v->wireframe ? " - wireframe" : "", v->normals ? " - normals" : "",
+                 v->mesh_final ? v->mesh_conv : conv, layer, v->exposure,
+                 v->wireframe ? " - wireframe" : "", patches, v->normals ? " - normals" : "",
                  v->mesh_final ? "" : " - solving");
     } else if (il_view_mesh_mode(v)) {
         snprintf(t, sizeof t, "illum view %s - %s - solving%s%s", v->o->scene_name,
@@ -211,6 +220,7 @@ int il_viewer_run(const il_viewer_options *o)
         } else if (!v.moved && v.previewing && now - v.last_move > REST_SECONDS) {
             il_view_request(&v, false);
         }
+        il_view_update_layer(&v, now);
         pthread_mutex_lock(&v.worker.mu);
         il_bake_result *baked = v.worker.baked;
         il_method baked_method = v.worker.baked_method;
@@ -223,6 +233,7 @@ int il_viewer_run(const il_viewer_options *o)
             v.worker.points_fresh = false;
         }
         bool fresh = v.worker.fresh;
+        uint64_t image_gen = v.worker.image_gen, worker_gen = v.worker.gen;
         if (fresh) {
             il_image_free(&v.shown);
             v.shown = v.worker.image;
@@ -237,6 +248,7 @@ int il_viewer_run(const il_viewer_options *o)
         }
         v.rad_steps = v.worker.rad_steps;
         v.unshot = v.worker.unshot;
+        v.radius = v.worker.radius;
         bool current = v.worker.run_gen == v.worker.gen;
         done = current && v.worker.done && !v.worker.fresh;
         failed = current && v.worker.failed;
@@ -263,8 +275,11 @@ int il_viewer_run(const il_viewer_options *o)
             il_view_upload_mesh(&v, baked, baked_method);
             il_bake_release(baked);
         }
+        if (fresh)
+            il_view_take_layer(&v, image_gen);
         if (il_view_mesh_mode(&v))
-            done = il_view_mesh_ready(&v) && v.mesh_final;
+            done = il_view_mesh_ready(&v) && v.mesh_final &&
+                   il_view_layer_done(&v, done, worker_gen);
         if (fresh || v.retone) {
             v.retone = false;
             il_view_upload_image(&v);

@@ -1,7 +1,8 @@
 /* The viewer's window state shared by its files (docs/viewer.md):
  * viewer.c runs the window, viewer_camera.c moves the camera,
  * viewer_keys.c handles keys, viewer_image.c draws the worker's image,
- * viewer_mesh.c the radiosity mesh, viewer_points.c the photon map's points,
+ * viewer_mesh.c the radiosity mesh, viewer_patches.c its patch outlines,
+ * viewer_background.c the environment behind it, viewer_points.c the photon map's points,
  * viewer_save.c writes images and cameras. */
 #ifndef IL_VIEWER_INTERNAL_H
 #define IL_VIEWER_INTERNAL_H
@@ -52,6 +53,24 @@ typedef struct viewer {
     int ss_w, ss_h;
     GLsizei mesh_indices;
     bool normals;                     /* N: the vertex normals as lines */
+    bool patch_lines;                 /* B: the patches' (hr: elements') outlines */
+    GLuint patch_vao, patch_vbo;
+    GLsizei patch_vertices;
+    uint32_t num_patches;             /* patches of the mesh shown */
+    /* The mesh view's specular layer: mirror and glass triangles (no patch)
+     * show the path tracer's image of the resting camera (viewer_layer.c). */
+    bool mesh_specular;               /* the mesh has triangles without a patch */
+    bool layer_wanted;                /* a path-traced layer is requested for layer_cam */
+    bool layer_ready;                 /* layer_tex holds it */
+    uint64_t layer_gen;               /* its worker request */
+    orbit layer_cam;
+    GLuint layer_tex;
+    /* The mesh view's background: the environment's radiance through each
+     * pixel (il_environment_radiance), recomputed when the camera or the
+     * window size changes; bg_w == 0: none (no environment). */
+    GLuint bg_tex;
+    int bg_w, bg_h;
+    orbit bg_cam;
     bool photon_points;               /* O: photon, sppm: the photons as points */
     GLuint points_vao, points_vbo;
     GLsizei num_points;
@@ -68,6 +87,7 @@ typedef struct viewer {
     char mesh_conv[64];               /* the mesh's solve: steps and unshot power */
     uint32_t rad_steps;               /* radiosity's latest step, from the worker */
     double unshot;                    /* -1: no radiosity solve running or shown */
+    double radius;                    /* sppm's mean photon radius; 0: none */
 } viewer;
 
 extern const char *const il_view_op_names[4];
@@ -119,6 +139,28 @@ bool il_view_make_mesh_program(viewer *v);
 void il_view_upload_mesh(viewer *v, const il_bake_result *b, il_method method);
 void il_view_draw_mesh(viewer *v, int fw, int fh);
 void il_view_free_mesh(viewer *v);
+
+/* viewer_patches.c */
+void il_view_make_patches(viewer *v);
+void il_view_upload_patches(viewer *v, const il_bake_result *b);
+void il_view_draw_patches(viewer *v);   /* with the mesh program bound */
+void il_view_free_patches(viewer *v);
+
+/* viewer_layer.c */
+/* Requests the path-traced layer when the camera rests on a final mesh with
+ * specular triangles; forgets it when the camera moved. */
+void il_view_update_layer(viewer *v, double now);
+/* A fresh worker image of request gen: the layer's, when it is current. */
+void il_view_take_layer(viewer *v, uint64_t gen);
+/* Whether the mesh view is complete: the layer too where it needs one. */
+bool il_view_layer_done(const viewer *v, bool worker_done, uint64_t worker_gen);
+void il_view_forget_layer(viewer *v);
+
+/* viewer_background.c */
+/* The environment's radiance behind the mesh for the current camera, at
+ * the window's size (a quarter of it while moving); false: no environment. */
+bool il_view_update_background(viewer *v, int fw, int fh, bool moving);
+void il_view_free_background(viewer *v);
 
 /* viewer_points.c */
 void il_view_make_points(viewer *v);

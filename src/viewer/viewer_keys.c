@@ -61,6 +61,9 @@ void il_view_on_key(GLFWwindow *win, int key, int scancode, int action, int mods
     case GLFW_KEY_L:                  /* mesh view: triangle (patch) edges */
         v->wireframe = !v->wireframe;
         break;
+    case GLFW_KEY_B:                  /* mesh view: patch (hr: element) boundaries */
+        v->patch_lines = !v->patch_lines;
+        break;
     case GLFW_KEY_N:                  /* mesh view: vertex normals */
         v->normals = !v->normals;
         break;

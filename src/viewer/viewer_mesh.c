@@ -1,7 +1,8 @@
 /* The radiosity and hr mesh view: the baked per-vertex radiance drawn by
  * OpenGL as a Gouraud-shaded mesh from any camera, with the debugging views
- * on request: the triangle edges (L) and the vertex normals (N) as short
- * lines (docs/viewer.md). */
+ * on request: the triangle edges (L), the patch boundaries (B,
+ * viewer_patches.c) and the vertex normals (N) as short lines, and the
+ * environment behind it (viewer_background.c; docs/viewer.md). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -14,24 +15,33 @@ bool il_view_make_mesh_program(viewer *v)
         "#version 330 core\n"
         "layout(location = 0) in vec3 position;\n"
         "layout(location = 1) in vec3 radiance;\n"
+        "layout(location = 2) in float kind;\n"
         "uniform mat4 mvp;\n"
         "out vec3 L;\n"
-        "void main() { L = radiance; gl_Position = mvp * vec4(position, 1.0); }\n";
-    /* Radiance * 2^EV into layer 0, a debugging line's colour into layer 1. */
+        "flat out float K;\n"
+        "void main() { L = radiance; K = kind; gl_Position = mvp * vec4(position, 1.0); }\n";
+    /* Radiance * 2^EV into layer 0, its alpha the kind of surface (1: a
+     * patch, 0.5: mirror/glass, 0: none drawn); a debugging line's colour
+     * into layer 1. */
     static const char *fs =
         "#version 330 core\n"
         "in vec3 L;\n"
+        "flat in float K;\n"
         "layout(location = 0) out vec4 radiance;\n"
         "layout(location = 1) out vec4 lines;\n"
         "uniform float scale;\n"
         "uniform vec4 line;\n"
         "void main() {\n"
-        "    radiance = vec4(L * scale, 1.0);\n"
+        "    radiance = vec4(L * scale, K);\n"
         "    lines = line;\n"
         "}\n";
     /* The render's box filter: the mean radiance of the S x S samples of a
      * pixel, then the linear operator (clamped, IEC 61966-2-1 sRGB), as
-     * il_tonemap maps a film's pixel; a line in any sample covers the pixel. */
+     * il_tonemap maps a film's pixel; a line in any sample covers the pixel.
+     * A sample that no triangle covered (alpha 0) takes the environment's
+     * radiance through the pixel's centre (viewer_background.c), one on a
+     * mirror or glass triangle the path-traced layer's pixel
+     * (viewer_layer.c; black until the camera rests). */
     static const char *rvs =
         "#version 330 core\n"
         "void main() {\n"
@@ -44,13 +54,27 @@ bool il_view_make_mesh_program(viewer *v)
         "uniform sampler2D radiance;\n"
         "uniform sampler2D lines;\n"
         "uniform int ss;\n"
+        "uniform sampler2D background;\n"
+        "uniform int has_background;\n"
+        "uniform float scale;\n"
+        "uniform vec2 size;\n"
+        "uniform sampler2D layer;\n"
+        "uniform int has_layer;\n"
         "void main() {\n"
         "    ivec2 base = ivec2(gl_FragCoord.xy) * ss;\n"
+        "    vec2 uv = vec2(gl_FragCoord.x / size.x, 1.0 - gl_FragCoord.y / size.y);\n"
+        "    vec3 bg = vec3(0.0), spec = vec3(0.0);\n"
+        "    if (has_background != 0)\n"
+        "        bg = scale * texture(background, uv).rgb;\n"
+        "    if (has_layer != 0)\n"
+        "        spec = scale * texture(layer, uv).rgb;\n"
         "    vec3 sum = vec3(0.0);\n"
         "    vec4 line = vec4(0.0);\n"
         "    for (int y = 0; y < ss; y++)\n"
         "        for (int x = 0; x < ss; x++) {\n"
-        "            sum += texelFetch(radiance, base + ivec2(x, y), 0).rgb;\n"
+        "            vec4 r = texelFetch(radiance, base + ivec2(x, y), 0);\n"
+        "            /* no triangle: the environment; mirror/glass: the path tracer's */\n"
+        "            sum += r.a == 0.0 ? bg : r.a < 0.75 ? spec : r.rgb;\n"
         "            vec4 l = texelFetch(lines, base + ivec2(x, y), 0);\n"
         "            if (l.a > line.a) line = l;\n"
         "        }\n"
@@ -80,6 +104,7 @@ bool il_view_make_mesh_program(viewer *v)
     glGenBuffers(1, &v->mesh_ibo);
     glGenVertexArrays(1, &v->normal_vao);
     glGenBuffers(1, &v->normal_vbo);
+    il_view_make_patches(v);
 
     a = il_view_compile(GL_VERTEX_SHADER, rvs);
     b = il_view_compile(GL_FRAGMENT_SHADER, rfs);
@@ -193,7 +218,7 @@ void il_view_upload_mesh(viewer *v, const il_bake_result *b, il_method method)
         nv += b->meshes[m].num_vertices;
         ni += (size_t)b->meshes[m].num_triangles * 3;
     }
-    float *vert = malloc(nv * 6 * sizeof *vert + 1);
+    float *vert = malloc(nv * 7 * sizeof *vert + 1);
     uint32_t *idx = malloc(ni * sizeof *idx + 1);
     if (!vert || !idx) {
         free(vert);
@@ -202,35 +227,51 @@ void il_view_upload_mesh(viewer *v, const il_bake_result *b, il_method method)
         return;
     }
     size_t bv = 0, bi = 0;
+    bool specular = false;
     for (uint32_t m = 0; m < b->num_meshes; m++) {
         const il_bake_mesh *me = &b->meshes[m];
-        for (uint32_t i = 0; i < me->num_vertices; i++)
+        for (uint32_t i = 0; i < me->num_vertices; i++) {
             for (int k = 0; k < 3; k++) {
-                vert[(bv + i) * 6 + k] = me->positions[i * 3 + k];
-                vert[(bv + i) * 6 + 3 + k] = me->radiance[i * 3 + k];
+                vert[(bv + i) * 7 + k] = me->positions[i * 3 + k];
+                vert[(bv + i) * 7 + 3 + k] = me->radiance[i * 3 + k];
             }
+            vert[(bv + i) * 7 + 6] = 1.0f;           /* a patch's vertex ... */
+        }
         for (size_t i = 0; i < (size_t)me->num_triangles * 3; i++)
             idx[bi + i] = (uint32_t)bv + me->indices[i];
+        /* ... unless on a triangle without one (mirror, glass): those have
+         * vertices of their own (a surface is one material). */
+        for (uint32_t t = 0; t < me->num_triangles; t++)
+            if (me->patches && me->patches[t] == UINT32_MAX) {
+                specular = true;
+                for (int c = 0; c < 3; c++)
+                    vert[(bv + me->indices[3 * (size_t)t + c]) * 7 + 6] = 0.5f;
+            }
         bv += me->num_vertices;
         bi += (size_t)me->num_triangles * 3;
     }
     glBindVertexArray(v->mesh_vao);
     glBindBuffer(GL_ARRAY_BUFFER, v->mesh_vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 6 * sizeof *vert), vert, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(nv * 7 * sizeof *vert), vert, GL_STATIC_DRAW);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, v->mesh_ibo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(ni * sizeof *idx), idx, GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), (void *)0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float), (void *)0);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
                           (void *)(3 * sizeof(float)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
+                          (void *)(6 * sizeof(float)));
     glBindVertexArray(0);
     upload_normals(v, b, nv);
+    il_view_upload_patches(v, b);
     free(vert);
     free(idx);
     v->mesh_indices = (GLsizei)ni;
     v->has_mesh = true;
     v->mesh_method = method;
+    v->mesh_specular = specular;
 }
 
 void il_view_draw_mesh(viewer *v, int fw, int fh)
@@ -242,6 +283,7 @@ void il_view_draw_mesh(viewer *v, int fw, int fh)
     int ss = moving ? 1 : full;
     if (fw <= 0 || fh <= 0 || !ss_resize(v, fw * full, fh * full))
         return;
+    bool background = il_view_update_background(v, fw, fh, moving);
     float mvp[16];
     il_view_camera_matrix(v, (float)fw / (float)fh, mvp);
     glBindFramebuffer(GL_FRAMEBUFFER, v->ss_fbo);
@@ -268,6 +310,8 @@ void il_view_draw_mesh(viewer *v, int fw, int fh)
         glDrawElements(GL_TRIANGLES, v->mesh_indices, GL_UNSIGNED_INT, 0);
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     }
+    if (v->patch_lines)
+        il_view_draw_patches(v);
     if (v->normals && v->normal_vertices) {
         glUniform4f(glGetUniformLocation(v->mesh_prog, "line"), 1.0f, 0.2f, 1.0f, 1.0f);
         glBindVertexArray(v->normal_vao);
@@ -287,6 +331,16 @@ void il_view_draw_mesh(viewer *v, int fw, int fh)
     glUniform1i(glGetUniformLocation(v->resolve_prog, "radiance"), 0);
     glUniform1i(glGetUniformLocation(v->resolve_prog, "lines"), 1);
     glUniform1i(glGetUniformLocation(v->resolve_prog, "ss"), ss);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, background ? v->bg_tex : 0);
+    glUniform1i(glGetUniformLocation(v->resolve_prog, "background"), 2);
+    glUniform1i(glGetUniformLocation(v->resolve_prog, "has_background"), background);
+    glUniform1f(glGetUniformLocation(v->resolve_prog, "scale"), exp2f(v->exposure));
+    glUniform2f(glGetUniformLocation(v->resolve_prog, "size"), (float)fw, (float)fh);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, v->layer_ready ? v->layer_tex : 0);
+    glUniform1i(glGetUniformLocation(v->resolve_prog, "layer"), 3);
+    glUniform1i(glGetUniformLocation(v->resolve_prog, "has_layer"), v->layer_ready);
     glBindVertexArray(v->resolve_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
@@ -301,4 +355,8 @@ void il_view_free_mesh(viewer *v)
     glDeleteTextures(1, &v->ss_radiance);
     glDeleteTextures(1, &v->ss_lines);
     glDeleteRenderbuffers(1, &v->ss_depth);
+    il_view_free_patches(v);
+    il_view_free_background(v);
+    if (v->layer_tex)
+        glDeleteTextures(1, &v->layer_tex);
 }

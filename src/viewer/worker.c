@@ -30,6 +30,7 @@ static bool publish(il_view_worker *w, const il_film *film, uint32_t passes, dou
         img = (il_image){0};
         w->fresh = true;
         w->image_preview = preview;
+        w->image_gen = w->run_gen;
         w->passes = passes;
         w->seconds = seconds;
         w->rays = rays;
@@ -47,6 +48,10 @@ typedef struct pass_ctx {
 static bool on_progress(const il_render_progress *p, void *user)
 {
     pass_ctx *c = user;
+    pthread_mutex_lock(&c->w->mu);
+    if (!stale(c->w))
+        c->w->radius = p->radius;
+    pthread_mutex_unlock(&c->w->mu);
     return publish(c->w, p->film, p->passes_done, p->seconds, p->rays, c->preview);
 }
 
@@ -111,11 +116,13 @@ static il_bake_result *copy_bake(const il_bake_result *b)
         *d = *s;
         size_t nv = (size_t)s->num_vertices * 3 * sizeof(float);
         size_t ni = (size_t)s->num_triangles * 3 * sizeof(uint32_t);
+        size_t np = (size_t)s->num_triangles * sizeof(uint32_t);
         d->positions = malloc(nv + 1);
         d->normals = malloc(nv + 1);
         d->radiance = malloc(nv + 1);
         d->indices = malloc(ni + 1);
-        if (!d->positions || !d->normals || !d->radiance || !d->indices) {
+        d->patches = malloc(np + 1);
+        if (!d->positions || !d->normals || !d->radiance || !d->indices || !d->patches) {
             ok = false;
             continue;
         }
@@ -123,6 +130,7 @@ static il_bake_result *copy_bake(const il_bake_result *b)
         memcpy(d->normals, s->normals, nv);
         memcpy(d->radiance, s->radiance, nv);
         memcpy(d->indices, s->indices, ni);
+        memcpy(d->patches, s->patches, np);
     }
     if (!ok) {
         il_bake_release(c);
@@ -224,6 +232,7 @@ static void *worker_main(void *arg)
         il_method method = w->method;
         w->done = w->failed = false;
         w->unshot = -1.0;
+        w->radius = 0.0;
         pthread_mutex_unlock(&w->mu);
 
         il_error err = {0};

@@ -31,6 +31,7 @@ typedef struct il_view_worker {
     il_image image;                /* latest complete film, resolved */
     bool fresh;                    /* image not yet taken by the window */
     bool image_preview;
+    uint64_t image_gen;            /* the request the image was rendered for */
     uint32_t passes;
     double seconds;
     uint64_t rays;
@@ -43,6 +44,8 @@ typedef struct il_view_worker {
                                       window took it (set before the start) */
     uint32_t rad_steps;            /* radiosity: shots (or sweeps) of the last solve */
     double unshot;                 /* radiosity: unshot / initial power; -1: none */
+    double radius;                 /* sppm: the mean photon radius after the last
+                                      pass (il_render_progress.radius); 0: none */
     float *points;                 /* photon, sppm: the last traced photons' positions
                                       (3 floats each, at most 2 IL_VIEW_MAX_POINTS);
                                       the window copies them when points_fresh */

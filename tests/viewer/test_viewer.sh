@@ -130,9 +130,22 @@ expect_exit 0 "tone pixels" -- "$ILLUM" compare tone.png tone-ref.png --max-rmse
 
 # Key M: path tracing to the next method, SPPM, with the same settings.
 display "$ILLUM" view cornell "${common[@]}" --keys 'M' --frames 2 --screenshot sppm.png \
-    >out.txt 2>err.txt || { fail "view --keys M: exit $?"; cat err.txt >&2; }
+    >sppm8.txt 2>err.txt || { fail "view --keys M: exit $?"; cat err.txt >&2; }
 expect_exit 0 "render sppm" -- "$ILLUM" render cornell "${common[@]}" --method sppm -o sppm-ref.png
 mean_close sppm.png sppm-ref.png 0.05 "view M (sppm) vs render sppm"
+# SPPM's convergence figure: the mean photon radius (il_render_progress.radius),
+# which shrinks pass by pass: after 8 passes below the radius after 1.
+cp sppm8.txt out.txt
+expect_stdout "cornell - sppm - radius [0-9.e-]* m - 8 spp - " "sppm radius in the info line"
+radius_of() { sed -n 's/.* - radius \([0-9.e-]*\) m - .*/\1/p' "$1"; }
+r8=$(radius_of sppm8.txt)
+display "$ILLUM" view cornell --width 96 --height 96 --spp 1 --seed 5 --camera-file cam.json -q \
+    --method sppm --frames 1 >out.txt 2>err.txt || { fail "view sppm 1 pass: exit $?"; cat err.txt >&2; }
+r1=$(radius_of out.txt)
+echo "sppm radius: $r1 after 1 pass, $r8 after 8"
+checks=$((checks + 1))
+awk -v a="$r1" -v b="$r8" 'BEGIN { exit !(a > 0 && b > 0 && b < a) }' ||
+    fail "sppm radius after 8 passes ($r8) not below the radius after 1 ($r1)"
 
 # Radiosity and hr: the solution (il_bake_progressive's per-vertex radiance)
 # drawn by OpenGL as a Gouraud-shaded mesh, against `illum render` of that
@@ -162,12 +175,52 @@ display "$ILLUM" view cornell "${rad[@]}" --keys N --frames 2 --screenshot radno
     { fail "view radiosity normals: exit $?"; cat err.txt >&2; }
 expect_stdout "radiosity mesh .* - normals" "normals info line"
 mean_far radnorm.png radmesh.png 0.05 "normals vs mesh"
+# Key B: the patch boundaries (orange): fewer patches than triangles (the
+# quads' diagonals are not boundaries), and the picture changes.
+# patch_count FILE: "TRIANGLES PATCHES" from a mesh info line.
+patch_count() { sed -n 's/.* mesh (\([0-9]*\) triangles).* - patch boundaries (\([0-9]*\) patches).*/\1 \2/p' "$1"; }
+patches_fewer() {
+    checks=$((checks + 1))
+    read -r nt np < <(patch_count out.txt)
+    echo "$1: ${nt:-?} triangles, ${np:-?} patches"
+    [ -n "${np:-}" ] && [ "$np" -gt 0 ] && [ "$np" -lt "$nt" ] ||
+        fail "$1: ${np:-no} patches for ${nt:-?} triangles"
+}
+display "$ILLUM" view cornell "${rad[@]}" --keys B --frames 2 --screenshot radpatch.png >out.txt 2>err.txt ||
+    { fail "view radiosity patch boundaries: exit $?"; cat err.txt >&2; }
+expect_stdout "radiosity mesh .* - patch boundaries ([1-9][0-9]* patches)" "patch boundaries info line"
+patches_fewer "radiosity patch boundaries"
+mean_far radpatch.png radmesh.png 0.05 "patch boundaries vs mesh"
+# B twice: off again, the mesh's pixels.
+display "$ILLUM" view cornell "${rad[@]}" --keys BB --frames 2 --screenshot radpatch2.png >out.txt 2>err.txt ||
+    { fail "view radiosity patch boundaries off: exit $?"; cat err.txt >&2; }
+expect_exit 0 "patch boundaries off (B twice)" -- "$ILLUM" compare radpatch2.png radmesh.png --max-rmse 0.001
 # Key V: the method's own image instead of the mesh, the render's pixels.
 display "$ILLUM" view cornell "${rad[@]}" --keys V --frames 2 --screenshot radimg.png >out.txt 2>err.txt ||
     { fail "view radiosity image: exit $?"; cat err.txt >&2; }
 expect_stdout "radiosity - step [0-9]*, unshot .* - 4 spp" "radiosity image info line"
 mean_close radimg.png rad.png 0.05 "view radiosity image (V) vs render radiosity"
 expect_exit 0 "radiosity image pixels" -- "$ILLUM" compare radimg.png rad.png --max-rmse 0.01
+
+# The environment as the mesh view's background: from outside the box the
+# probe fills the rest of the window, as in the render; without it the
+# render is darker (the check can fail).
+env="${IL_SHARED_DIR:-/tmp/shared}/scenes/envmaps/probulator_pisa_256x128.hdr"
+if [ -f "$env" ]; then
+    cat > camout.json <<'JSON'
+{"position": [0.9, 0.6, -1.6], "target": [0.28, 0.27, 0.28], "up": [0, 1, 0], "fov": 45}
+JSON
+    radenv=(--method radiosity --subdiv 2 --width 96 --height 96 --spp 4 --seed 2 --camera-file camout.json -q)
+    expect_exit 0 "render radiosity with env" -- "$ILLUM" render cornell "${radenv[@]}" --env "$env" -o radenv.png
+    expect_exit 0 "render radiosity without env" -- "$ILLUM" render cornell "${radenv[@]}" -o radnoenv.png
+    display "$ILLUM" view cornell "${radenv[@]}" --env "$env" --frames 2 --screenshot radenvmesh.png \
+        >out.txt 2>err.txt || { fail "view radiosity mesh with env: exit $?"; cat err.txt >&2; }
+    mean_close radenvmesh.png radenv.png 0.02 "view radiosity mesh with env vs render"
+    expect_exit 0 "radiosity mesh with env pixels" -- "$ILLUM" compare radenvmesh.png radenv.png --max-rmse 0.02
+    mean_far radnoenv.png radenv.png 0.2 "the environment shows in the render"
+else
+    echo "note: $env not found, environment background not checked"
+fi
 
 # Key O: photon mapping's photons (the global map's 20,000 or fewer traced
 # positions) as yellow points over the image; the image without them is the
@@ -192,6 +245,30 @@ mean_close hrmesh.png hr.png 0.01 "view hr mesh vs render hr"
 expect_exit 0 "hr mesh pixels" -- "$ILLUM" compare hrmesh.png hr.png --max-rmse 0.02
 expect_file hrlook.png "hr first look"
 mean_far hrlook.png hrmesh.png 0.1 "hr first look (after the first iteration) vs final mesh"
+# Key B on hr: the elements' (leaves') outlines.
+display "$ILLUM" view cornell "${hr[@]}" --keys B --frames 2 --screenshot hrpatch.png >out.txt 2>err.txt ||
+    { fail "view hr patch boundaries: exit $?"; cat err.txt >&2; }
+patches_fewer "hr element boundaries"
+mean_far hrpatch.png hrmesh.png 0.05 "hr element boundaries vs mesh"
+
+# Mirror and glass in the mesh view: the bake gives them no radiance; once
+# the camera rests the path tracer's image fills them in (the specular
+# layer).  Without it the spheres are black and the view is 14% darker than
+# the render (0.0559 vs 0.0651); with it within 2% (0.0661).
+sph=(--method radiosity --subdiv 1 --width 96 --height 96 --spp 8 --seed 2 -q)
+expect_exit 0 "render radiosity cornell-spheres" -- "$ILLUM" render cornell-spheres "${sph[@]}" -o sph.png
+display "$ILLUM" view cornell-spheres "${sph[@]}" --frames 2 --screenshot sphmesh.png >out.txt 2>err.txt ||
+    { fail "view radiosity mesh of cornell-spheres: exit $?"; cat err.txt >&2; }
+expect_stdout "radiosity mesh .* - specular layer 8 spp - " "specular layer in the info line"
+mean_close sphmesh.png sph.png 0.05 "mesh view with the specular layer vs render (cornell-spheres)"
+# After an orbit the layer is rendered again for the camera at rest.
+display "$ILLUM" view cornell-spheres "${sph[@]}" --keys '>C' --save sphorbit --frames 2 \
+    --screenshot sphorbit.png >out.txt 2>err.txt ||
+    { fail "view radiosity mesh of cornell-spheres after an orbit: exit $?"; cat err.txt >&2; }
+expect_exit 0 "render the camera after the orbit" -- "$ILLUM" render cornell-spheres "${sph[@]}" \
+    --camera-file sphorbit-camera.json -o sphorbit-ref.png
+mean_close sphorbit.png sphorbit-ref.png 0.05 "specular layer after an orbit vs render"
+mean_far sphorbit.png sphmesh.png 0.01 "the orbit moved the camera (cornell-spheres)"
 
 # Interactive (no --frames, no --spp): refines until closed; after 3 s it is
 # still running (timeout's exit 124) and has printed no error.

@@ -152,6 +152,21 @@ static il_status collect(const il_pm_map *map, sppm_pixel *p, float alpha, il_pm
     return IL_OK;
 }
 
+/* The progress report's convergence figure: the mean current radius of the
+ * pixels whose visible point this pass found (the others keep the initial
+ * radius forever and would hide the shrinking of eq. 8-10 above). */
+static double mean_radius(const sppm *s)
+{
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < s->num_px; i++)
+        if (s->px[i].valid) {
+            sum += s->px[i].r;
+            n++;
+        }
+    return n ? sum / (double)n : 0.0;
+}
+
 static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stats *st, il_error *err)
 {
     double t0 = omp_get_wtime();
@@ -279,7 +294,8 @@ il_status il_sppm_render(const il_scene *scene, il_film *film, const il_render_d
                                     .seconds = seconds,
                                     .time_limit = desc->time_limit,
                                     .rays = rays + ps->photon_rays,
-                                    .film = film};
+                                    .film = film,
+                                    .radius = mean_radius(&s)};
             if (!desc->progress(&p, desc->progress_user))
                 break;
         }
