@@ -4,7 +4,10 @@
  * away from the final solution in mean luminance and the last within 2% of
  * it (the solve converges; radiosity's looks carry the ambient term), the
  * result equals il_bake's bit for bit, and a callback that returns false
- * stops the solve early with a result more than 1% away from the full one. */
+ * stops the solve early with a result more than 1% away from the full one.
+ * Every baked triangle names its patch (il_bake_mesh.patches): as many
+ * distinct patches as the solver reports, the triangles of one patch in
+ * one plane. */
 #include <string.h>
 
 #include "check.h"
@@ -100,6 +103,61 @@ static void release_copy(il_bake_result *b)
     memset(b, 0, sizeof *b);
 }
 
+typedef struct vec3f {
+    float x, y, z;
+} vec3f;
+
+static vec3f tri_normal(const il_bake_mesh *m, uint32_t t)
+{
+    const float *a = m->positions + 3 * (size_t)m->indices[3 * t],
+                *b = m->positions + 3 * (size_t)m->indices[3 * t + 1],
+                *c = m->positions + 3 * (size_t)m->indices[3 * t + 2];
+    float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    vec3f n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    float len = sqrtf(n.x * n.x + n.y * n.y + n.z * n.z);
+    return len > 0.0f ? (vec3f){n.x / len, n.y / len, n.z / len} : n;
+}
+
+/* The patch of every triangle: ids below `patches`, each id used, the
+ * triangles of one patch in one plane (their normals agree). */
+static void check_patches(const il_bake_result *b, uint64_t patches, const char *name)
+{
+    vec3f *normal = calloc(patches ? patches : 1, sizeof *normal);
+    unsigned char *seen = calloc(patches ? patches : 1, 1);
+    uint64_t distinct = 0, bad_id = 0, bent = 0;
+    for (uint32_t m = 0; m < b->num_meshes; m++) {
+        const il_bake_mesh *bm = &b->meshes[m];
+        CHECK(bm->patches != NULL);
+        if (!bm->patches)
+            continue;
+        for (uint32_t t = 0; t < bm->num_triangles; t++) {
+            uint32_t p = bm->patches[t];
+            if (p == UINT32_MAX)
+                continue;
+            if (p >= patches) {
+                bad_id++;
+                continue;
+            }
+            vec3f n = tri_normal(bm, t);
+            if (!seen[p]) {
+                seen[p] = 1;
+                normal[p] = n;
+                distinct++;
+            } else if (n.x * normal[p].x + n.y * normal[p].y + n.z * normal[p].z < 0.999f) {
+                bent++;
+            }
+        }
+    }
+    printf("%s: %llu patches named by the triangles of %llu, %llu ids out of range, %llu "
+           "triangles off their patch's plane\n", name, (unsigned long long)distinct,
+           (unsigned long long)patches, (unsigned long long)bad_id, (unsigned long long)bent);
+    CHECK(patches > 0 && distinct == patches);
+    CHECK(bad_id == 0);
+    CHECK(bent == 0);
+    free(normal);
+    free(seen);
+}
+
 static void check_method(const il_scene *s, il_render_desc *rd, const char *name,
                          bool fixed_mesh)
 {
@@ -123,6 +181,7 @@ static void check_method(const il_scene *s, il_render_desc *rd, const char *name
     CHECK(fabs(w.last - lf) < 0.02 * lf);
     CHECK(same_radiance(prog, plain));
     release_copy(&w.first);
+    check_patches(plain, fixed_mesh ? plain->stats.radiosity.num_patches : plain->stats.hr.leaves, name);
 
     /* Stopped after the second look: a valid, darker result. */
     watch ws = {.stop_after = 2};

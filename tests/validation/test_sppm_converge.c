@@ -2,7 +2,9 @@
  * difference from a 2048-spp path-traced image falls as passes are added
  * (read from the film the progress callback sees after each pass), and
  * after 64 passes each wall's mean radiance is within 5% of the path
- * tracer's. */
+ * tracer's.  The progress report's radius (the mean per-pixel search
+ * radius) starts at most at the initial radius and shrinks pass by pass
+ * (Hachisuka & Jensen 2009, eq. 8-10). */
 #include "mesh_compare.h"
 
 #define W 32
@@ -11,6 +13,7 @@
 typedef struct watch {
     const il_image *ref;
     double rms[65];
+    double radius[65];
 } watch;
 
 static bool on_pass(const il_render_progress *p, void *user)
@@ -19,6 +22,8 @@ static bool on_pass(const il_render_progress *p, void *user)
     il_image img = {0};
     if (p->passes_done < 65 && il_film_resolve(p->film, &img, NULL) == IL_OK)
         w->rms[p->passes_done] = rel_rms(&img, w->ref);
+    if (p->passes_done < 65)
+        w->radius[p->passes_done] = p->radius;
     il_image_free(&img);
     return true;
 }
@@ -40,7 +45,12 @@ int main(void)
     il_image img = render_desc_image(s, W, H, &rd, &st);
     CHECK(st.spp == 64 && st.photon.passes == 64 && st.photon.emitted == 64u * 50000u);
     for (int k = 1; k <= 64; k *= 2)
-        printf("pass %2d: relative RMS difference from the path tracer %.4f\n", k, w.rms[k]);
+        printf("pass %2d: relative RMS difference from the path tracer %.4f, mean radius %.5f m\n", k,
+               w.rms[k], w.radius[k]);
+    CHECK(w.radius[1] > 0.0 && w.radius[1] <= 0.01);
+    for (int k = 2; k <= 64; k++)
+        CHECK(w.radius[k] <= w.radius[k - 1] * 1.001);
+    CHECK(w.radius[64] < 0.8 * w.radius[1]);
     CHECK(w.rms[4] < w.rms[1]);
     CHECK(w.rms[16] < w.rms[4]);
     CHECK(w.rms[64] < w.rms[16]);
