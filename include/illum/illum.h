@@ -623,7 +623,8 @@ typedef struct il_linespace_stats {
     uint64_t memory_bytes;     /* the whole structure */
     uint64_t inject_rays;      /* light paths emitted */
     uint64_t injected_segments; /* (segment, voxel) deposits */
-    uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded;
+    uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded; /* occluded: the entry held
+                                  light but the in-shaft test found geometry first */
     double seconds_build;      /* grid, shafts and candidate lists */
     double seconds_inject;
     double seconds_sample;     /* the camera pass */

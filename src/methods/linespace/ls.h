@@ -173,7 +173,7 @@ il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, i
 bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
                     uint32_t self_mesh, uint32_t self_prim);
 /* il_ls_lookup at x and, when occlusion_test, il_ls_occluded from x, with
- * one walk (IL_LS_OCCLUDED first, then IL_LS_EMPTY). */
+ * one walk (IL_LS_EMPTY first: an empty entry is not tested for occlusion). */
 il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
                                bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L);
 

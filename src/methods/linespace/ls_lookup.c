@@ -119,11 +119,17 @@ il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il
     int64_t slot = find(ls, v3_fma(x, w, eps), v3_neg(w), &dir, &t_in, &t_out, &voxel);
     if (slot < 0)
         return IL_LS_EMPTY;
-    if (occlusion_test && shaft_blocks(ls, scene, slot, voxel, x, w, eps, -t_in, self_mesh, self_prim))
-        return IL_LS_OCCLUDED;
+    /* The entry first, the occlusion test only for an entry holding light
+     * (an empty entry gives nothing either way): the lookup is bound by
+     * cache misses on these large arrays, so the entry and the shaft's
+     * candidate range are fetched together. */
     const il_ls_entry *e = &ls->entries[2u * (uint64_t)slot + dir];
+    if (occlusion_test)
+        __builtin_prefetch(&ls->cand_end[slot > 0 ? slot - 1 : 0]);
     if (e->count == 0)
         return IL_LS_EMPTY;
+    if (occlusion_test && shaft_blocks(ls, scene, slot, voxel, x, w, eps, -t_in, self_mesh, self_prim))
+        return IL_LS_OCCLUDED;
     *L = v3(e->rgb[0], e->rgb[1], e->rgb[2]);
     return IL_LS_FOUND;
 }

@@ -134,12 +134,14 @@ static bool path_step(const ls_method *m, ls_path *p, const il_hit *hit, const i
             il_ls_lookup_status r;
             il_vec3 Li = v3s(0.0f);
             if (m->blur_radius > 0.0f) {
-                bool occluded = m->set.occlusion_test &&
-                                il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim);
                 il_frame f = il_frame_from_normal(surf->ns);
                 il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
                 il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
-                r = occluded ? IL_LS_OCCLUDED : il_ls_lookup(m->ls, q, bs.wi, &Li);
+                r = il_ls_lookup(m->ls, q, bs.wi, &Li);
+                /* The occlusion test only where there is light to block. */
+                if (r == IL_LS_FOUND && m->set.occlusion_test &&
+                    il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
+                    r = IL_LS_OCCLUDED;
             } else {
                 r = il_ls_read(m->ls, s, surf->p, bs.wi, m->set.occlusion_test, surf->mesh, surf->prim, &Li);
             }
