@@ -101,6 +101,14 @@ typedef struct il_ls_entry {
 #define IL_LS_DENSE 96u
 #define IL_LS_OVERFLOW 0xffffu
 
+/* 64 shafts of one Linespace: a bit per shaft stored, and the slot of the
+ * first of them (the slot of a stored shaft is first_slot + the stored
+ * shafts below it in the word: one cache line per lookup). */
+typedef struct il_ls_word {
+    uint64_t mask;
+    uint64_t first_slot;
+} il_ls_word;
+
 typedef struct il_linespace {
     il_vec3 lo, hi;              /* the grid's box */
     il_vec3 vsize;               /* one voxel */
@@ -110,8 +118,7 @@ typedef struct il_linespace {
     int32_t *cell;               /* res[0]*res[1]*res[2]: Linespace index or -1 */
     uint32_t num_voxels;         /* Linespaces (non-empty voxels) */
     uint32_t *voxel_cell;        /* the cell of each Linespace */
-    uint64_t *mask;              /* num_voxels * mask_words: shafts stored */
-    uint32_t *rank;              /* num_voxels * mask_words: stored shafts before each word */
+    il_ls_word *words;           /* num_voxels * mask_words: shafts stored */
     uint64_t *first_shaft;       /* num_voxels + 1: prefix sums of stored shafts */
     il_ls_entry *entries;        /* 2 per stored shaft (direction 0, 1) */
     uint64_t *cand_base;         /* num_voxels + 1: prefix sums into cand */

@@ -51,8 +51,7 @@ void il_ls_free(il_linespace *ls)
 {
     free(ls->cell);
     free(ls->voxel_cell);
-    free(ls->mask);
-    free(ls->rank);
+    free(ls->words);
     free(ls->first_shaft);
     free(ls->entries);
     free(ls->cand_base);
@@ -71,7 +70,7 @@ uint64_t il_ls_memory(const il_linespace *ls)
     uint64_t v = ls->num_voxels;
     uint64_t ntri = v ? ls->first_tri[v] : 0;
     return cells * sizeof(int32_t) + v * sizeof(uint32_t) +
-           v * ls->mask_words * (sizeof(uint64_t) + sizeof(uint32_t)) +
+           v * ls->mask_words * sizeof(il_ls_word) +
            (v + 1) * sizeof(uint64_t) * 3 + ls->num_stored * (2 * sizeof(il_ls_entry) + sizeof(uint32_t)) +
            ls->num_cand * sizeof(uint16_t) + ntri * 2 * sizeof(uint32_t) +
            (uint64_t)ls->num_shafts * sizeof(float);
@@ -99,10 +98,10 @@ int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft)
 {
     size_t w = (size_t)voxel * ls->mask_words + shaft / 64u;
     uint64_t bit = 1ull << (shaft % 64u);
-    uint64_t m = ls->mask[w];
-    if (!(m & bit))
+    il_ls_word word = ls->words[w];
+    if (!(word.mask & bit))
         return -1;
-    return (int64_t)(ls->first_shaft[voxel] + ls->rank[w] + (uint64_t)__builtin_popcountll(m & (bit - 1u)));
+    return (int64_t)(word.first_slot + (uint64_t)__builtin_popcountll(word.mask & (bit - 1u)));
 }
 
 /* Triangle-box overlap, conservative: bounding boxes and the plane of the
@@ -398,14 +397,13 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
         stored += tmp[v].stored;
         cands += tmp[v].num_cands;
     }
-    ls->mask = malloc((size_t)nv * ls->mask_words * sizeof(uint64_t) + 8);
-    ls->rank = malloc((size_t)nv * ls->mask_words * sizeof(uint32_t) + 4);
+    ls->words = malloc((size_t)nv * ls->mask_words * sizeof(il_ls_word) + sizeof(il_ls_word));
     ls->first_shaft = malloc(((size_t)nv + 1) * sizeof(uint64_t));
     ls->cand_base = malloc(((size_t)nv + 1) * sizeof(uint64_t));
     ls->entries = calloc(2 * stored + 2, sizeof(il_ls_entry));
     ls->cand_end = malloc(stored * sizeof(uint32_t) + 4);
     ls->cand = malloc(cands * sizeof(uint16_t) + 2);
-    if (oom || !ls->mask || !ls->rank || !ls->first_shaft || !ls->cand_base || !ls->entries ||
+    if (oom || !ls->words || !ls->first_shaft || !ls->cand_base || !ls->entries ||
         !ls->cand_end || !ls->cand) {
         for (uint32_t v = 0; v < nv; v++) {
             free(tmp[v].mask);
@@ -423,11 +421,10 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
         voxel_tmp *t = &tmp[v];
         ls->first_shaft[v] = sbase;
         ls->cand_base[v] = cbase;
-        uint32_t r = 0;
+        uint64_t slot = sbase;
         for (uint32_t w = 0; w < ls->mask_words; w++) {
-            ls->mask[(size_t)v * ls->mask_words + w] = t->mask[w];
-            ls->rank[(size_t)v * ls->mask_words + w] = r;
-            r += (uint32_t)__builtin_popcountll(t->mask[w]);
+            ls->words[(size_t)v * ls->mask_words + w] = (il_ls_word){t->mask[w], slot};
+            slot += (uint64_t)__builtin_popcountll(t->mask[w]);
         }
         memcpy(ls->cand_end + sbase, t->ends, t->stored * sizeof(uint32_t));
         memcpy(ls->cand + cbase, t->cands, t->num_cands * sizeof(uint16_t));

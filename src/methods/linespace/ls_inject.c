@@ -226,7 +226,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
     double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
     for (uint32_t v = 0; v < ls->num_voxels; v++) {
         for (uint32_t w = 0; w < ls->mask_words; w++) {
-            uint64_t m = ls->mask[(size_t)v * ls->mask_words + w];
+            uint64_t m = ls->words[(size_t)v * ls->mask_words + w].mask;
             while (m) {
                 uint32_t shaft = w * 64u + (uint32_t)__builtin_ctzll(m);
                 m &= m - 1u;
