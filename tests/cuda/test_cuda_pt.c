@@ -1,6 +1,7 @@
 /* The GPU path-tracing megakernel (src/cuda/pt_kernel.cu) on the Cornell
- * box against (a) the same kernel compiled by gcc with the same random
- * streams: the same image up to float rounding (nvcc's FMA contraction can
+ * box and on the Cornell box with the Stanford dragon against (a) the same
+ * kernel compiled by gcc with the same random streams: the same image up to
+ * float rounding (nvcc's FMA contraction can
  * send a few paths another way), and (b) the CPU path tracer il_render:
  * the same mean radiance within noise.  Exits 77 (a skip for ctest) without
  * a GPU or driver, as on CI. */
@@ -14,14 +15,10 @@
 #define H 64
 #define SPP 256
 
-int main(void)
+/* The GPU image of the scene against the kernel on the CPU and il_render. */
+static void compare(il_scene *s)
 {
-    if (cuda_test_require_gpu() != 0)
-        return 77;
     il_error err = {0};
-    il_scene *s = cuda_test_cornell();
-    if (!s)
-        return check_report();
     float *gpu = calloc(3 * W * H, sizeof *gpu), *cpu = calloc(3 * W * H, sizeof *cpu);
     CHECK_OK(il_cuda_render_pt(s, W, H, SPP, 8, 3, gpu, &err), &err);
 
@@ -42,6 +39,26 @@ int main(void)
     cuda_test_compare(s, W, H, gpu, cpu, SPP, 0.03);
     free(gpu);
     free(cpu);
+}
+
+int main(void)
+{
+    if (cuda_test_require_gpu() != 0)
+        return 77;
+    il_scene *s = cuda_test_cornell();
+    if (!s)
+        return check_report();
+    compare(s);
     il_scene_release(s);
+
+    /* The Cornell box with the Stanford dragon (47,806 triangles). */
+    il_error err = {0};
+    s = NULL;
+    CHECK_OK(il_scene_load(IL_SOURCE_DIR "/bench/scenes/cornell-dragon.json", NULL, &s, &err), &err);
+    if (s) {
+        CHECK_OK(il_scene_commit(s, &err), &err);
+        compare(s);
+        il_scene_release(s);
+    }
     return check_report();
 }
