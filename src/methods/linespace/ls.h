@@ -184,4 +184,20 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
 il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
                                bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L);
 
+/* il_ls_read in two halves, for many lookups at once (the sampling pass's
+ * wave): il_ls_probe finds the shaft and direction of (x, w) and starts
+ * fetching its entry and candidate range from memory; il_ls_read_probe,
+ * called later with the same x and w, finishes the read.  The lookup is
+ * bound by cache misses on the Linespace's large arrays, which a wave's
+ * probes overlap. */
+typedef struct il_ls_probe {
+    int64_t slot;                /* -1: nothing to read */
+    uint32_t dir, voxel;
+    float t_in;
+} il_ls_probe;
+void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, bool occlusion_test, il_ls_probe *pr);
+il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
+                                     il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
+                                     uint32_t self_prim, il_vec3 *L);
+
 #endif

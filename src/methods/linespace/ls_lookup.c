@@ -107,29 +107,44 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
     return shaft_blocks(ls, scene, slot, voxel, org, w, eps, t_out - eps, self_mesh, self_prim);
 }
 
-il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
-                               bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L)
+void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, bool occlusion_test, il_ls_probe *pr)
 {
     /* One walk for both: the light's line through x (nudged towards w)
      * travelling along -w; where it enters the voxel is where the ray from
      * x along w leaves it, t_in behind x. */
     float eps = 1e-4f * v3_max_comp(ls->vsize);
-    uint32_t dir, voxel;
-    float t_in, t_out;
-    int64_t slot = find(ls, v3_fma(x, w, eps), v3_neg(w), &dir, &t_in, &t_out, &voxel);
-    if (slot < 0)
+    float t_out;
+    pr->slot = find(ls, v3_fma(x, w, eps), v3_neg(w), &pr->dir, &pr->t_in, &t_out, &pr->voxel);
+    if (pr->slot < 0)
+        return;
+    __builtin_prefetch(&ls->entries[2u * (uint64_t)pr->slot + pr->dir]);
+    if (occlusion_test)
+        __builtin_prefetch(&ls->cand_end[pr->slot > 0 ? pr->slot - 1 : 0]);
+}
+
+il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
+                                     il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
+                                     uint32_t self_prim, il_vec3 *L)
+{
+    if (pr->slot < 0)
         return IL_LS_EMPTY;
     /* The entry first, the occlusion test only for an entry holding light
-     * (an empty entry gives nothing either way): the lookup is bound by
-     * cache misses on these large arrays, so the entry and the shaft's
-     * candidate range are fetched together. */
-    const il_ls_entry *e = &ls->entries[2u * (uint64_t)slot + dir];
-    if (occlusion_test)
-        __builtin_prefetch(&ls->cand_end[slot > 0 ? slot - 1 : 0]);
+     * (an empty entry gives nothing either way). */
+    const il_ls_entry *e = &ls->entries[2u * (uint64_t)pr->slot + pr->dir];
     if (e->count == 0)
         return IL_LS_EMPTY;
-    if (occlusion_test && shaft_blocks(ls, scene, slot, voxel, x, w, eps, -t_in, self_mesh, self_prim))
+    float eps = 1e-4f * v3_max_comp(ls->vsize);
+    if (occlusion_test &&
+        shaft_blocks(ls, scene, pr->slot, pr->voxel, x, w, eps, -pr->t_in, self_mesh, self_prim))
         return IL_LS_OCCLUDED;
     *L = v3(e->rgb[0], e->rgb[1], e->rgb[2]);
     return IL_LS_FOUND;
+}
+
+il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
+                               bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L)
+{
+    il_ls_probe pr;
+    il_ls_probe_at(ls, x, w, occlusion_test, &pr);
+    return il_ls_read_probe(ls, scene, &pr, x, w, occlusion_test, self_mesh, self_prim, L);
 }

@@ -75,7 +75,17 @@ typedef struct ls_path {
     il_ray shadow_ray;
     il_vec3 shadow_L, read_L;
     uint64_t rays;
+    /* A lookup waiting for the wave's (path_step returned LS_LOOKUP): at x
+     * (geometric normal ng, triangle self) along wi, with the throughput
+     * after the bounce and the Russian-roulette number. */
+    il_vec3 x, ng, wi, next;
+    uint32_t self_mesh, self_prim;
+    float rr_u;
 } ls_path;
+
+/* What path_step leaves a path to: stop, trace on along p->ray, or the
+ * Linespace lookup pending in it (path_after_lookup). */
+typedef enum ls_step { LS_STOP, LS_GO, LS_LOOKUP } ls_step;
 
 static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
 {
@@ -88,34 +98,76 @@ static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
     p->rays = 1;                   /* the camera ray */
 }
 
+/* The path goes on from x along wi (the bounce's throughput already in
+ * p->beta), with Russian roulette after the third vertex (pbrt-v4
+ * 13.4.4) on rr_u. */
+static ls_step path_advance(const il_scene *s, ls_path *p, il_vec3 x, il_vec3 ng, il_vec3 wi, float rr_u)
+{
+    if (v3_is_zero(p->beta) || !v3_is_finite(p->beta))
+        return LS_STOP;
+    p->ray = (il_ray){.org = il_offset_origin(s->tracer, x, ng, wi), .tmin = 0.0f, .dir = wi,
+                      .tmax = INFINITY};
+    if (p->depth >= 3) {
+        float q = il_minf(v3_max_comp(p->beta), 0.95f);
+        if (!(rr_u < q))
+            return LS_STOP;
+        p->beta = v3_scale(p->beta, 1.0f / q);
+    }
+    p->depth++;
+    p->rays++;                     /* the next ray */
+    return LS_GO;
+}
+
+/* A pending lookup's answer r (Li when found): the path ends with what it
+ * read, or (fallback) traces on as the path tracer would. */
+static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_status r, il_vec3 Li,
+                                 ls_counts *cnt)
+{
+    if (r == IL_LS_FOUND) {
+        cnt->hits++;
+        p->read = true;
+        p->read_L = v3_mul(p->next, Li);
+        return LS_STOP;
+    }
+    if (r == IL_LS_OCCLUDED)
+        cnt->occluded++;
+    else
+        cnt->empty++;
+    if (!m->set.fallback)
+        return LS_STOP;
+    p->beta = p->next;
+    p->specular = false;
+    return path_advance(m->scene, p, p->x, p->ng, p->wi, p->rr_u);
+}
+
 /* The vertex where p->ray ended (hit NULL: it left the scene).  u: its four
  * pairs, always drawn in this order (a fifth for the blur is drawn here
  * when a lookup is made), and cos_dir the cosine warp of u[2].  Returns
  * true when the path goes on along p->ray; either way the caller then
  * resolves the vertex with path_finish_vertex. */
-static bool path_step(const ls_method *m, ls_path *p, const il_hit *hit, const il_surface *surf,
-                      const il_vec2 *u, const il_vec3 *cos_dir, il_sampler *smp, ls_counts *cnt)
+static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, const il_surface *surf,
+                         const il_vec2 *u, const il_vec3 *cos_dir, il_sampler *smp, ls_counts *cnt)
 {
     const il_scene *s = m->scene;
     p->shadow = p->read = false;
     if (!hit) {
         if (p->specular)
             p->L = v3_add(p->L, v3_mul(p->beta, il_environment_radiance(s, p->ray.dir)));
-        return false;
+        return LS_STOP;
     }
     il_vec3 wo = v3_neg(p->ray.dir);
     const il_material *mat = surf->material;
     if (p->specular && !v3_is_zero(mat->emission))
         p->L = v3_add(p->L, v3_mul(p->beta, il_emitted_radiance(mat, surf->ng, wo)));
     if (p->depth >= m->set.max_depth)
-        return false;
+        return LS_STOP;
     il_bsdf b;
     il_bsdf_init(&b, s, surf);
     il_bsdf_sample bs;
     if (il_bsdf_is_delta(&b)) {
         if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
             !il_sides_agree(surf, wo, bs.wi))
-            return false;
+            return LS_STOP;
         p->beta = v3_mul(p->beta, bs.weight);
         p->specular = true;
     } else {
@@ -127,55 +179,36 @@ static bool path_step(const ls_method *m, ls_path *p, const il_hit *hit, const i
         }
         if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
             !il_sides_agree(surf, wo, bs.wi))
-            return false;
+            return LS_STOP;
         il_vec3 next = v3_mul(p->beta, bs.weight);
         if (u[3].x < lookup_probability(m, &b)) {
             cnt->lookups++;
-            il_ls_lookup_status r;
+            p->x = surf->p;
+            p->ng = surf->ng;
+            p->wi = bs.wi;
+            p->next = next;
+            p->self_mesh = surf->mesh;
+            p->self_prim = surf->prim;
+            p->rr_u = u[3].y;
+            if (m->blur_radius <= 0.0f)
+                return LS_LOOKUP; /* read with the wave's others */
+            il_frame f = il_frame_from_normal(surf->ns);
+            il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
+            il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
             il_vec3 Li = v3s(0.0f);
-            if (m->blur_radius > 0.0f) {
-                il_frame f = il_frame_from_normal(surf->ns);
-                il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
-                il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
-                r = il_ls_lookup(m->ls, q, bs.wi, &Li);
-                /* The occlusion test only where there is light to block. */
-                if (r == IL_LS_FOUND && m->set.occlusion_test &&
-                    il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
-                    r = IL_LS_OCCLUDED;
-            } else {
-                r = il_ls_read(m->ls, s, surf->p, bs.wi, m->set.occlusion_test, surf->mesh, surf->prim, &Li);
-            }
-            if (r == IL_LS_FOUND) {
-                cnt->hits++;
-                p->read = true;
-                p->read_L = v3_mul(next, Li);
-                return false;
-            }
-            if (r == IL_LS_OCCLUDED)
-                cnt->occluded++;
-            else
-                cnt->empty++;
-            if (!m->set.fallback)
-                return false;
+            il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li);
+            /* The occlusion test only where there is light to block. */
+            if (r == IL_LS_FOUND && m->set.occlusion_test &&
+                il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
+                r = IL_LS_OCCLUDED;
+            return path_after_lookup(m, p, r, Li, cnt);
         }
         p->beta = next;
         p->specular = false;
     }
-    if (v3_is_zero(p->beta) || !v3_is_finite(p->beta))
-        return false;
-    p->ray = (il_ray){.org = il_offset_origin(s->tracer, surf->p, surf->ng, bs.wi), .tmin = 0.0f,
-                      .dir = bs.wi, .tmax = INFINITY};
-    /* Russian roulette after the third vertex (pbrt-v4 13.4.4). */
-    if (p->depth >= 3) {
-        float q = il_minf(v3_max_comp(p->beta), 0.95f);
-        if (!(u[3].y < q))
-            return false;
-        p->beta = v3_scale(p->beta, 1.0f / q);
-    }
-    p->depth++;
-    p->rays++;                     /* the next ray */
-    return true;
+    return path_advance(s, p, surf->p, surf->ng, bs.wi, u[3].y);
 }
+
 
 /* Adds the vertex's direct light (unless its shadow ray was blocked), then
  * what it read from the Linespace. */
@@ -209,6 +242,8 @@ typedef struct ls_wave {
     il_hit hits[LS_WAVE];          /* [a] */
     il_surface surf[LS_WAVE];      /* [a] */
     uint32_t slot[LS_WAVE];        /* [j]: its row of u, for the drawing paths */
+    uint32_t looking[LS_WAVE];     /* the paths with a pending lookup */
+    il_ls_probe probe[LS_WAVE];    /* [k] of looking */
     il_vec2 u[LS_WAVE * LS_PAIRS];
     il_vec2 u_cos[LS_WAVE];
     il_vec3 cos_dir[LS_WAVE];
@@ -246,22 +281,40 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             w->u_cos[k] = w->u[k * LS_PAIRS + 2];
         il_sample_cosine_hemisphere_n(w->u_cos, w->cos_dir, num_drawing);
 
-        uint32_t num_shadow = 0, still = 0;
+        uint32_t num_shadow = 0, num_looking = 0, still = 0;
         for (uint32_t a = 0; a < num_active; a++) {
             uint32_t j = w->active[a];
             ls_path *p = &w->path[j];
             bool hit = w->hits[a].mesh != IL_HIT_NONE;
             bool drawing = hit && p->depth < m->set.max_depth;
             uint32_t k = drawing ? w->slot[j] : 0;
-            bool more = path_step(m, p, hit ? &w->hits[a] : NULL, &w->surf[a],
-                                  drawing ? &w->u[k * LS_PAIRS] : NULL,
-                                  drawing ? &w->cos_dir[k] : NULL, &w->smp[j], cnt);
+            ls_step next = path_step(m, p, hit ? &w->hits[a] : NULL, &w->surf[a],
+                                     drawing ? &w->u[k * LS_PAIRS] : NULL,
+                                     drawing ? &w->cos_dir[k] : NULL, &w->smp[j], cnt);
             w->occluded[j] = false;
             if (p->shadow) {
                 w->shadowed[num_shadow] = j;
                 w->rays[num_shadow++] = p->shadow_ray;
             }
-            if (more) /* compaction in place: `still` never passes `a` */
+            if (next == LS_GO) /* compaction in place: `still` never passes `a` */
+                w->active[still++] = j;
+            else if (next == LS_LOOKUP)
+                w->looking[num_looking++] = j;
+        }
+        /* The lookups in two sweeps: the shafts found and their entries
+         * fetched, then read, so that the cache misses overlap. */
+        bool occlusion_test = m->set.occlusion_test;
+        for (uint32_t k = 0; k < num_looking; k++) {
+            const ls_path *p = &w->path[w->looking[k]];
+            il_ls_probe_at(m->ls, p->x, p->wi, occlusion_test, &w->probe[k]);
+        }
+        for (uint32_t k = 0; k < num_looking; k++) {
+            uint32_t j = w->looking[k];
+            ls_path *p = &w->path[j];
+            il_vec3 Li = v3s(0.0f);
+            il_ls_lookup_status r = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, occlusion_test,
+                                                     p->self_mesh, p->self_prim, &Li);
+            if (path_after_lookup(m, p, r, Li, cnt) == LS_GO)
                 w->active[still++] = j;
         }
         if (num_shadow > 0) {
