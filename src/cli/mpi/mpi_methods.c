@@ -95,7 +95,9 @@ static int mpi_allgather(void *user, const void *data, size_t bytes, void **out,
 
 static const char *method_name(il_method m)
 {
-    return m == IL_METHOD_PHOTON ? "photon" : m == IL_METHOD_SPPM ? "sppm" : "radiosity";
+    return m == IL_METHOD_PHOTON ? "photon" : m == IL_METHOD_SPPM ? "sppm"
+           : m == IL_METHOD_HR    ? "hr"
+                                  : "radiosity";
 }
 
 /* Sums the films on rank 0 (each pixel has one non-zero contributor, or
@@ -147,10 +149,10 @@ il_status cli_mpi_render_method(const il_scene *scene, il_film *film, const il_r
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (desc->method != IL_METHOD_PHOTON && desc->method != IL_METHOD_SPPM &&
-        desc->method != IL_METHOD_RADIOSITY)
+        desc->method != IL_METHOD_RADIOSITY && desc->method != IL_METHOD_HR)
         return il_fail(err, IL_ERR_INVALID,
-                       "distributed rendering (mpirun) supports --method pt, photon, sppm and "
-                       "radiosity only so far");
+                       "distributed rendering (mpirun) supports --method pt, photon, sppm, "
+                       "radiosity and hr only so far");
 
     /* Progress and the solve's step callback would let one rank stop
      * alone; the library does not call them when split. */

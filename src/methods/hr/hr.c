@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/hr/hr.h"
 
 /* One patch per input polygon: a patch size beyond any scene gives every
@@ -144,6 +145,15 @@ il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_des
     il_render_stats local;
     if (!stats)
         stats = &local;
+    const il_distrib *d = desc ? desc->distrib : NULL;
+    if (il_distrib_on(d) && d->rank > 0) {
+        /* Split across processes: every process solves (its share of each
+         * refinement's links, hr_distrib.c) and process 0 renders the whole
+         * film; the others' films stay zero, so the sum is its film. */
+        il_status st = il_hr_run(scene, desc, NULL, NULL, stats, err);
+        il_film_clear(film);
+        return st;
+    }
     return il_patch_solve_and_render(scene, film, desc, il_hr_run, stats, &stats->hr.seconds_render,
                                      err);
 }

@@ -54,6 +54,7 @@ typedef struct il_hr_settings {
     uint32_t max_iterations;
     uint64_t seed;
     int threads;               /* > 0, resolved */
+    const il_distrib *distrib; /* the render split across processes (hr_distrib.c); NULL: not */
     /* Internal (il_bake_progressive, bake.c): called after every iteration
      * (refine, gather, push-pull) with the solver; false stops the
      * iterations.  NULL from il_hr_settings_resolve. */
@@ -146,6 +147,8 @@ typedef struct il_hr_solver {
     uint32_t *vis_strata;           /* il_hr_vis_strata: vis_rays entries */
     uint32_t vis_m;                 /* visibility strata per side */
     bool vis_pow2;                  /* vis_m a power of two (> 1), vis_rays = vis_m^2 */
+    struct il_hr_link_table *table; /* split across processes: the links this
+                                       refinement makes, computed by all (hr_distrib.c) */
     il_hr_stats stats;
 } il_hr_solver;
 
@@ -194,6 +197,23 @@ static inline il_vec3 il_hr_exposed_radiance(const il_hr_elem *e)
 il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
                             il_hr_elem *src);
 
+/* il_hr_link_make's computation into *l (no pool, no counter). */
+void il_hr_link_fill(const il_hr_solver *s, const il_hr_elem *r, il_hr_elem *src, il_hr_link *l);
+
+/* Whether the refinement splits link l (receiver r) when its visibility
+ * bound is vis_bound (hr_refine.c explains the test). */
+static inline bool il_hr_splits(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l,
+                                float vis_bound)
+{
+    if (!(vis_bound > 0.0f && l->err_ff > 0.0f))
+        return false;
+    float bf = l->err_ff * il_luminance(il_hr_exposed_radiance(l->src)) * vis_bound;
+    if (!(bf > s->set.bf_eps * s->b_ref))
+        return false;
+    const il_hr_elem *big = r->area >= l->src->area ? r : l->src;
+    return big->area > s->area_min && big->level < IL_HR_MAX_LEVEL;
+}
+
 /* Appends link l to the end of receiver r's list (the order refinement and
  * gathering read it in). */
 static inline void il_hr_link_append(il_hr_elem *r, il_hr_link *l)
@@ -236,6 +256,30 @@ bool il_hr_facing(const il_hr_solver *s, const il_hr_elem *a, const il_hr_elem *
  * then each child's subtree (in OpenMP tasks near the root, when called
  * inside a parallel region); the running thread's pool. */
 void il_hr_refine_tree(const il_hr_solver *s, il_hr_elem *e);
+/* Split across processes (hr_distrib.c): finds, sweep by sweep, every link
+ * the coming refinement makes or whose visibility it needs, has each
+ * process compute its contiguous share of each sweep's links, gathers them
+ * in rank order and fills s->table, which il_hr_refine_tree then reads
+ * instead of computing.  Every process calls it, outside any parallel
+ * region, before each refinement; the table is kept for the next one. */
+il_status il_hr_distrib_plan(il_hr_solver *s, il_error *err);
+void il_hr_distrib_table_free(il_hr_solver *s);
+#define IL_HR_NO_ENTRY UINT32_MAX
+/* Table entry `at` into *l (its rays added to pool) when it is the link
+ * r <- src made under a link whose rays all passed when parent_visible;
+ * false otherwise (then the caller computes the link). */
+bool il_hr_distrib_take(const il_hr_solver *s, il_hr_pool *pool, uint32_t at, const il_hr_elem *r,
+                        il_hr_elem *src, bool parent_visible, il_hr_link *l);
+/* The same for an existing link l of r whose visibility is unknown, found
+ * by its address; *at: its entry. */
+bool il_hr_distrib_take_old(const il_hr_solver *s, il_hr_pool *pool, const il_hr_elem *r,
+                            il_hr_link *l, bool parent_visible, uint32_t *at);
+/* The entry of the first link that replaces link l of r when it splits (l
+ * taken from entry `at`, or IL_HR_NO_ENTRY: an existing link, found by
+ * address); IL_HR_NO_ENTRY when the table has none. */
+uint32_t il_hr_distrib_first_child(const il_hr_solver *s, const il_hr_elem *r,
+                                   const il_hr_link *l, uint32_t at);
+
 /* Gather (H = sum F V B) over root r's tree, then push-pull it: leaves get
  * radiance = emit + rho * (H pushed down), inner elements the area mean. */
 void il_hr_gather_root(il_hr_elem *root);

@@ -227,6 +227,13 @@ il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr
     il_hr_link *l = il_hr_pool_link(pool);
     if (!l)
         return NULL;
+    il_hr_link_fill(s, r, src, l);
+    pool->links_made++;
+    return l;
+}
+
+void il_hr_link_fill(const il_hr_solver *s, const il_hr_elem *r, il_hr_elem *src, il_hr_link *l)
+{
     /* Integrate over one element with the exact point form factor to the
      * other; turn F_sr into F_rs by reciprocity (A_r F_rs = A_s F_sr). */
     double mean, max, other, f_rs;
@@ -255,6 +262,4 @@ il_hr_link *il_hr_link_make(const il_hr_solver *s, il_hr_pool *pool, const il_hr
     if (!(big->area > s->area_min && big->level < IL_HR_MAX_LEVEL))
         l->err_ff = 0.0f;
     l->next = NULL;
-    pool->links_made++;
-    return l;
 }

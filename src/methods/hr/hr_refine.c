@@ -25,23 +25,22 @@
 /* Quadtree levels whose children are refined in tasks of their own. */
 #define TASK_LEVELS 3
 
-/* Whether the link is split when its visibility bound is vis_bound. */
+/* Whether the link is split when its visibility bound is vis_bound (the
+ * test above, il_hr_splits in hr.h: hr_distrib.c makes the same call). */
 static bool splits(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link *l, float vis_bound)
 {
-    if (!(vis_bound > 0.0f && l->err_ff > 0.0f))
-        return false;
-    float bf = l->err_ff * il_luminance(il_hr_exposed_radiance(l->src)) * vis_bound;
-    if (!(bf > s->set.bf_eps * s->b_ref))
-        return false;
-    const il_hr_elem *big = r->area >= l->src->area ? r : l->src;
-    return big->area > s->area_min && big->level < IL_HR_MAX_LEVEL;
+    return il_hr_splits(s, r, l, vis_bound);
 }
 
-/* parent_visible: the link l replaced had every visibility ray pass. */
+/* parent_visible: the link l replaced had every visibility ray pass;
+ * at: split across processes, the table entry l was taken from
+ * (IL_HR_NO_ENTRY: an existing link, or one computed here). */
 static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, il_hr_link *l,
-                        bool parent_visible)
+                        bool parent_visible, uint32_t at)
 {
-    if (l->vis < 0.0f)
+    /* Split across processes, the table has it (the same bits). */
+    if (l->vis < 0.0f &&
+        !(s->table && il_hr_distrib_take_old(s, pool, r, l, parent_visible, &at)))
         il_hr_link_visibility(s, pool, r, l, parent_visible, splits(s, r, l, 1.0f));
     if (!splits(s, r, l, l->vis_bound) || pool->failed) {
         il_hr_link_append(r, l);
@@ -55,15 +54,30 @@ static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, 
         return;
     }
     bool visible = l->vis >= 1.0f;
+    /* The table's replacements of l follow one another in this order. */
+    uint32_t next_at = s->table ? il_hr_distrib_first_child(s, r, l, at) : IL_HR_NO_ENTRY;
     il_hr_pool_put_link(pool, l);
     for (uint32_t k = 0; k < 4; k++) {
         il_hr_elem *rr = split_receiver ? &kids[k] : r, *ss = split_receiver ? src : &kids[k];
         if (!il_hr_facing(s, rr, ss))
             continue;
-        il_hr_link *nl = il_hr_link_make(s, pool, rr, ss);
-        if (!nl)
+        il_hr_link *nl = NULL;
+        uint32_t nl_at = IL_HR_NO_ENTRY;
+        if (s->table) {
+            if (!(nl = il_hr_pool_link(pool)))
+                return;
+            if (next_at != IL_HR_NO_ENTRY &&
+                il_hr_distrib_take(s, pool, next_at, rr, ss, visible, nl)) {
+                nl_at = next_at++;
+            } else {
+                next_at = IL_HR_NO_ENTRY;
+                il_hr_link_fill(s, rr, ss, nl);
+            }
+            pool->links_made++;
+        } else if (!(nl = il_hr_link_make(s, pool, rr, ss))) {
             return;
-        refine_link(s, pool, rr, nl, visible);
+        }
+        refine_link(s, pool, rr, nl, visible, nl_at);
     }
 }
 
@@ -77,7 +91,7 @@ void il_hr_refine_tree(const il_hr_solver *s, il_hr_elem *e)
     e->num_links = 0;
     while (l) {
         il_hr_link *next = l->next;
-        refine_link(s, pool, e, l, false);
+        refine_link(s, pool, e, l, false, IL_HR_NO_ENTRY);
         l = next;
     }
     /* e's links are final now, and so are the lists it handed down to its

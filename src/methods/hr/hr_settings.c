@@ -13,6 +13,7 @@
 #include <omp.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/hr/hr.h"
 
 static il_status check_eps(const char *name, float v, float max, il_error *err)
@@ -45,6 +46,9 @@ il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out
         return il_fail(err, IL_ERR_INVALID,
                        "hr: threads %d is out of range (1 to 4096; 0 means all cores)",
                        desc->threads);
+    if ((st = il_distrib_check(desc->distrib, desc, "hr", err)) != IL_OK)
+        return st;
+    out->distrib = il_distrib_on(desc->distrib) ? desc->distrib : NULL;
     out->bf_eps = d->bf_eps > 0.0f ? d->bf_eps : 0.015f;
     out->area_eps = d->area_eps > 0.0f ? d->area_eps : 2000.0f / (1700.0f * 1700.0f);
     out->energy_eps = d->energy_eps > 0.0f ? d->energy_eps : 0.005f;

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/hr/hr.h"
 #include "methods/patch_direct.h"
 
@@ -95,6 +96,7 @@ void il_hr_solver_free(il_hr_solver *s)
     free(s->roots);
     free(s->order);
     free(s->vis_strata);
+    il_hr_distrib_table_free(s);
     memset(s, 0, sizeof *s);
 }
 
@@ -178,6 +180,13 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     double prev = total_energy(s);
     for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f; it++) {
         double t1 = omp_get_wtime();
+        /* Split across processes: this refinement's new links computed
+         * by shares and gathered first (hr_distrib.c). */
+        il_status plan_st = il_distrib_on(set->distrib) ? il_hr_distrib_plan(s, err) : IL_OK;
+        if (plan_st != IL_OK) {
+            il_hr_solver_free(s);
+            return plan_st;
+        }
         /* One task per root, biggest first; a root's subtrees become tasks
          * of their own near the top (il_hr_refine_tree), so a scene of a
          * few big patches (the Cornell box's 17) still balances. */

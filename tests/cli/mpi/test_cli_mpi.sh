@@ -64,7 +64,7 @@ expect_no_file bad2.pfm "rank without its scene"
 # What is not distributed says so.
 # (photon, sppm and radiosity run split: test_cli_mpi_methods.sh)
 expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --method rsm -q -o r.pfm
-expect_stderr "supports --method pt, photon, sppm and radiosity" "rsm under mpirun"
+expect_stderr "supports --method pt, photon, sppm, radiosity and hr" "rsm under mpirun"
 expect_no_file r.pfm "rsm under mpirun"
 
 finish

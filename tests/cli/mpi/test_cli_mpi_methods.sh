@@ -1,5 +1,6 @@
-# Photon mapping, SPPM and radiosity under mpirun (docs/distributed.md,
-# "Photon mapping, SPPM and radiosity"), registered only with -DIL_MPI=ON:
+# Photon mapping, SPPM, radiosity and hierarchical radiosity under mpirun
+# (docs/distributed.md, "Photon mapping, SPPM and radiosity"), registered only
+# with -DIL_MPI=ON:
 # -np 2 and -np 3 on localhost give the single-process film bit for bit.
 . "$(dirname "$0")/../lib.bash"
 : "${MPIEXEC:?}"
@@ -57,6 +58,15 @@ expect_exit 0 "gauss-seidel: ranks of 1 and 4 threads" -- timeout 120 "${MPI[@]}
     --threads 1 -o gs.pfm : -np 1 "$ILLUM" render "${gs[@]}" --threads 4 -o gs.pfm
 checks=$((checks + 1))
 cmp -s gs-ref.pfm gs.pfm || fail "gauss-seidel, ranks of 1 and 4 threads: film differs"
+# Hierarchical radiosity: each refinement's new links (form factors and
+# visibility rays) split in sweeps; every rank builds the same hierarchy.
+same_as_single hr "2 3" -- "${base[@]}" --method hr
+# Spheres (triangles, more levels), a non-square ray count (no staged rays),
+# 2 threads per rank.
+same_as_single hr-spheres "2" -- cornell-spheres --width 40 --height 28 --spp 2 --seed 7 \
+    --threads 2 --method hr --vis-rays 9
+expect_exit 0 "hr verbose" -- "${MPI[@]}" -np 2 "$ILLUM" render "${base[@]}" --method hr -o hv.pfm
+expect_stderr "mpi: 2 ranks, hr: .* exchanges, .* MB gathered" "hr verbose"
 
 # The comparison can fail: another seed gives another SPPM film.
 expect_exit 0 "sppm, other seed" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --width 40 \
@@ -75,9 +85,9 @@ expect_exit 1 "sppm --time under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render co
     --height 16 --method sppm --time 1 --threads 1 -q -o t.pfm
 expect_stderr "renders a pass count, not for a time" "sppm --time under mpirun"
 expect_no_file t.pfm "sppm --time under mpirun"
-expect_exit 1 "hr under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --width 16 \
-    --height 16 --method hr --threads 1 -q -o h.pfm
-expect_stderr "supports --method pt, photon, sppm and radiosity" "hr under mpirun"
-expect_no_file h.pfm "hr under mpirun"
+expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --width 16 \
+    --height 16 --method rsm --threads 1 -q -o h.pfm
+expect_stderr "supports --method pt, photon, sppm, radiosity and hr" "rsm under mpirun"
+expect_no_file h.pfm "rsm under mpirun"
 
 finish
