@@ -5,7 +5,9 @@
  * exactly one tile, a tile is rendered by one thread, and a pass adds each
  * pixel's samples in increasing index; passes run one after the other.  So
  * every pixel's sum is formed in the same order whatever the thread count,
- * and the film is bit-identical with 1 or N threads. */
+ * and the film is bit-identical with 1 or N threads.  Split across processes
+ * (desc->distrib) each renders every size-th tile, whole, in the same
+ * passes: the films add up to one process's. */
 #include "methods/camera_pass.h"
 
 #include <omp.h>
@@ -13,6 +15,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 
 #define IL_TILE 16
 /* A pass renders about this many samples, at least 1 and at most 64 per
@@ -102,6 +105,13 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
     uint64_t pixels = (uint64_t)ctx.width * ctx.height;
     uint32_t tiles_x = (ctx.width + IL_TILE - 1) / IL_TILE;
     uint32_t tiles = tiles_x * ((ctx.height + IL_TILE - 1) / IL_TILE);
+    /* Split across processes (il_distrib): this process's tiles are
+     * rank, rank + size, ...; a tile's sums do not depend on who renders it,
+     * so the processes' films add up to the single-process film. */
+    bool split = il_distrib_on(desc->distrib);
+    uint32_t tile0 = split ? (uint32_t)desc->distrib->rank : 0u;
+    uint32_t step = split ? (uint32_t)desc->distrib->size : 1u;
+    uint32_t mine = tiles > tile0 ? (tiles - tile0 + step - 1) / step : 0u;
     uint32_t per_pass = pixels ? (uint32_t)(IL_PASS_SAMPLES / pixels) : 1u;
     per_pass = per_pass < 1 ? 1 : (per_pass > IL_PASS_MAX_SPP ? IL_PASS_MAX_SPP : per_pass);
 
@@ -123,7 +133,8 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
         uint32_t count = spp - done < per_pass ? spp - done : per_pass;
         uint64_t pass_rays = 0, pass_bad = 0;
 #pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : pass_rays, pass_bad)
-        for (uint32_t t = 0; t < tiles; t++) {
+        for (uint32_t k = 0; k < mine; k++) {
+            uint32_t t = tile0 + k * step;
             uint32_t x0 = (t % tiles_x) * IL_TILE, y0 = (t / tiles_x) * IL_TILE;
             il_camera_tile tile = {
                 .x0 = x0,
@@ -142,7 +153,7 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
         rays += pass_rays;
         bad += pass_bad;
         seconds = omp_get_wtime() - t0;
-        if (desc->progress) {
+        if (desc->progress && !split) {
             il_render_progress p = {
                 .passes_done = done,
                 .passes_total = spp == UINT32_MAX ? 0 : spp,

@@ -87,7 +87,8 @@ void il_camera_tile_add(const il_camera_pass_ctx *ctx, il_camera_tile *tile, uin
                         il_vec3 L);
 
 /* il_camera_pass with a tile callback: the same tiles, passes, progress,
- * time limit and result.  Each thread gets scratch_bytes of its own
+ * time limit and result; with desc->distrib, this process's share of the
+ * tiles and no progress calls.  Each thread gets scratch_bytes of its own
  * (64-byte aligned, allocated before the film is cleared; 0: none).  Fails
  * only when that allocation does. */
 il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_render_desc *desc,

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "illum/illum.h"
+#include "methods/distrib.h"
 #include "methods/hr/hr.h"
 #include "methods/ibl/ibl.h"
 #include "methods/linespace/ls.h"
@@ -76,6 +77,8 @@ il_status il_render(const il_scene *scene, il_film *film, const il_render_desc *
     if (stats)
         memset(stats, 0, sizeof *stats);
     il_status st = validate(scene, film, desc, err);
+    if (st == IL_OK)
+        st = il_distrib_check(desc->distrib, desc, "render", err);
     if (st != IL_OK)
         return st;
     switch (desc->method) {

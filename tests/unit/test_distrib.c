@@ -2,9 +2,10 @@
  * (illum.h, docs/distributed.md), without MPI: each "process" is a thread
  * with its own film, the exchange a shared buffer between two barriers.
  * The films of all ranks summed must be the single-process film bit for
- * bit, for photon mapping (with and without final gather), SPPM and
- * progressive radiosity (shooting and gathering); a malformed distrib and a
- * failing exchange are errors, not crashes. */
+ * bit, for every method: the path tracer, photon mapping (with and without
+ * final gather), SPPM, progressive radiosity (shooting and gathering),
+ * hierarchical radiosity, IBL, Linespace and reflective shadow maps; a
+ * malformed distrib and a failing exchange are errors, not crashes. */
 #include <pthread.h>
 #include <string.h>
 
@@ -155,6 +156,45 @@ int main(void)
     gather.max_steps = 8;
     rad.radiosity = &gather;
     check_split(s, rad, 2, "radiosity, gathering");
+
+    il_render_desc hr = base;
+    hr.method = IL_METHOD_HR;
+    check_split(s, hr, 2, "hierarchical radiosity");
+
+    il_render_desc pt = base;
+    pt.method = IL_METHOD_PT;
+    check_split(s, pt, 3, "path tracing");
+
+    il_linespace_desc lsd = {.n = 2, .inject_rays = 20000};
+    il_render_desc ls = base;
+    ls.method = IL_METHOD_LINESPACE;
+    ls.linespace = &lsd;
+    check_split(s, ls, 2, "linespace");
+
+    /* The box lit by a spot and a sky through its open front as well. */
+    il_scene *lit = NULL;
+    CHECK_OK(il_scene_load("cornell", NULL, &lit, &err), &err);
+    if (lit) {
+        il_light_desc spot = {.type = IL_LIGHT_SPOT, .position = {0.0f, 0.5f, 0.2f},
+                              .direction = {0.0f, -1.0f, -0.3f}, .intensity = {2.0f, 2.0f, 2.0f},
+                              .spot_angle = 40.0f};
+        CHECK_OK(il_scene_add_light(lit, &spot, &err), &err);
+        il_environment_desc sky = {.radiance = {0.2f, 0.3f, 0.5f}};
+        CHECK_OK(il_scene_set_environment(lit, &sky, &err), &err);
+        CHECK_OK(il_scene_commit(lit, &err), &err);
+        il_rsm_desc rsmd = {.resolution = 64, .samples = 32};
+        il_render_desc rsm = base;
+        rsm.method = IL_METHOD_RSM;
+        rsm.rsm = &rsmd;
+        check_split(lit, rsm, 2, "rsm");
+        il_ibl_desc ibd = {.lights = 32, .batch = 8};
+        il_render_desc ibl = base;
+        ibl.method = IL_METHOD_IBL;
+        ibl.ibl = &ibd;
+        check_split(lit, ibl, 2, "ibl");
+        check_split(lit, ibl, 3, "ibl");
+        il_scene_release(lit);
+    }
 
     /* Malformed or failing: errors. */
     il_film *film = NULL;

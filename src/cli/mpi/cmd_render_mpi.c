@@ -416,12 +416,11 @@ static il_status check_job(const il_render_desc *desc, const cli_mpi_job *job, i
         if (ckpt)
             return il_fail(err, IL_ERR_INVALID,
                            "checkpoints (--checkpoint-every) cover --method pt under mpirun; "
-                           "photon, sppm and radiosity start again from the beginning after a "
-                           "failure");
+                           "the other methods start again from the beginning after a failure");
         if (job->write_every > 0.0)
             return il_fail(err, IL_ERR_INVALID,
-                           "--write-every under mpirun: --method pt only (photon, sppm and "
-                           "radiosity have no film before their end)");
+                           "--write-every under mpirun: --method pt only (split, the other "
+                           "methods have no image before their end)");
         return IL_OK;
     }
     if (ckpt && desc->time_limit > 0.0)

@@ -1,5 +1,7 @@
-/* Photon mapping, SPPM and radiosity under mpirun (docs/distributed.md):
- * the library splits the work itself (il_distrib, illum.h) and needs one
+/* Every method but the path tracer under mpirun (docs/distributed.md):
+ * the library splits the work itself (il_distrib, illum.h: photon ranges,
+ * form-factor rows, hierarchical radiosity's links, and every method's
+ * camera-pass tiles, IBL's, RSM's and Linespace's included) and needs one
  * collective, an allgather of bytes, which this file implements with MPI;
  * here too the films are summed on rank 0 and the counters of every rank
  * added.  Every exchange is timed in two parts: a barrier (waiting for the
@@ -93,15 +95,8 @@ static int mpi_allgather(void *user, const void *data, size_t bytes, void **out,
     return 0;
 }
 
-static const char *method_name(il_method m)
-{
-    return m == IL_METHOD_PHOTON ? "photon" : m == IL_METHOD_SPPM ? "sppm"
-           : m == IL_METHOD_HR    ? "hr"
-                                  : "radiosity";
-}
-
-/* Sums the films on rank 0 (each pixel has one non-zero contributor, or
- * rank 0 alone renders: the sum is exact). */
+/* Sums the films on rank 0 (each pixel has one non-zero contributor: the
+ * sum is exact). */
 static void reduce_film(il_film *film, int rank)
 {
     size_t n = (size_t)il_film_width(film) * il_film_height(film) * 4;
@@ -122,7 +117,7 @@ static void print_figures(const il_render_desc *desc, const il_render_stats *sta
 {
     /* per_rank: {render s, wait s, transfer s} per rank */
     double wait_max = 0.0, xfer_max = 0.0;
-    fprintf(stderr, "illum: mpi: %d ranks, %s: render s per rank:", size, method_name(desc->method));
+    fprintf(stderr, "illum: mpi: %d ranks, %s: render s per rank:", size, cli_method_name(desc->method));
     for (int r = 0; r < size; r++) {
         fprintf(stderr, " %.3f", per_rank[3 * r]);
         wait_max = per_rank[3 * r + 1] > wait_max ? per_rank[3 * r + 1] : wait_max;
@@ -148,12 +143,6 @@ il_status cli_mpi_render_method(const il_scene *scene, il_film *film, const il_r
     int rank, size;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (desc->method != IL_METHOD_PHOTON && desc->method != IL_METHOD_SPPM &&
-        desc->method != IL_METHOD_RADIOSITY && desc->method != IL_METHOD_HR)
-        return il_fail(err, IL_ERR_INVALID,
-                       "distributed rendering (mpirun) supports --method pt, photon, sppm, "
-                       "radiosity and hr only so far");
-
     /* Progress and the solve's step callback would let one rank stop
      * alone; the library does not call them when split. */
     exchange_tally tally = {0};

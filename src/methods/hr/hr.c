@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "core/error.h"
-#include "methods/distrib.h"
 #include "methods/hr/hr.h"
 
 /* One patch per input polygon: a patch size beyond any scene gives every
@@ -145,15 +144,9 @@ il_status il_hr_render(const il_scene *scene, il_film *film, const il_render_des
     il_render_stats local;
     if (!stats)
         stats = &local;
-    const il_distrib *d = desc ? desc->distrib : NULL;
-    if (il_distrib_on(d) && d->rank > 0) {
-        /* Split across processes: every process solves (its share of each
-         * refinement's links, hr_distrib.c) and process 0 renders the whole
-         * film; the others' films stay zero, so the sum is its film. */
-        il_status st = il_hr_run(scene, desc, NULL, NULL, stats, err);
-        il_film_clear(film);
-        return st;
-    }
+    /* Split across processes (desc->distrib) every process solves (its
+     * share of the work, exchanged) and renders its share of the camera
+     * pass's tiles (camera_pass.c): the films add up to one process's. */
     return il_patch_solve_and_render(scene, film, desc, il_hr_run, stats, &stats->hr.seconds_render,
                                      err);
 }

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "methods/distrib.h"
 #include "methods/ibl/ibl_shade.h"
 
 /* Shadow maps of one pass over the tiles fit in this much memory: a batch
@@ -97,8 +98,16 @@ static il_status state_init(ibl_state *st, const il_scene *scene, const il_film 
     return IL_OK;
 }
 
-/* The film as the image of the first m lights. */
-static void write_film(const ibl_state *st, il_film *film, uint32_t m)
+/* Split across processes (il_distrib): tile t is process t mod size's. */
+static bool my_tile(const il_distrib *d, uint32_t t)
+{
+    return !il_distrib_on(d) || t % (uint32_t)d->size == (uint32_t)d->rank;
+}
+
+/* The film as the image of the first m lights (split: of this process's
+ * tiles; the others' pixels stay zero, so the films add up to one
+ * process's). */
+static void write_film(const ibl_state *st, il_film *film, uint32_t m, const il_distrib *d)
 {
     const il_ibl_job *job = &st->job;
     uint32_t w = il_film_width(film), h = il_film_height(film);
@@ -107,6 +116,8 @@ static void write_film(const ibl_state *st, il_film *film, uint32_t m)
 #pragma omp parallel for schedule(static) num_threads(st->threads)
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++) {
+            if (!my_tile(d, (y / job->tile) * job->tiles_x + x / job->tile))
+                continue;
             size_t p = 3 * ((size_t)y * w + x);
             const double *b = job->base + p, *a = job->acc + p;
             il_vec3 L = v3((float)((b[0] + a[0] * inv_m) * inv_spp),
@@ -201,6 +212,8 @@ il_status il_ibl_render_budget(const il_scene *scene, il_film *film, const il_re
 #pragma omp parallel for schedule(dynamic) num_threads(st.threads) \
     reduction(+ : rays, shadow_rays, bad)
             for (uint32_t t = 0; t < st.job.tiles; t++) {
+                if (!my_tile(desc->distrib, t))
+                    continue;
                 il_ibl_tile_stats ts = {0};
                 il_ibl_shade_tile(&st.job, t, first, g0, g1, maps, &st.scratch[omp_get_thread_num()],
                                   &ts);
@@ -214,9 +227,9 @@ il_status il_ibl_render_budget(const il_scene *scene, il_film *film, const il_re
             first = false;
         }
         done = end;
-        write_film(&st, film, done);
+        write_film(&st, film, done, desc->distrib);
         seconds = omp_get_wtime() - t0;
-        if (desc->progress) {
+        if (desc->progress && !il_distrib_on(desc->distrib)) {
             /* For ibl a "pass" is a batch of lights: passes_done counts lights. */
             il_render_progress p = {.passes_done = done,
                                     .passes_total = set.lights,

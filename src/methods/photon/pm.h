@@ -273,13 +273,6 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
  * this process's rays only). */
 il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
                             const il_distrib *d, il_pm_photons *out, il_error *err);
-/* The camera pass of desc->spp samples (no time limit, no progress) on
- * this process's tiles (tile t of the camera pass's 16x16 tiles on process
- * t mod size), all samples of a tile at once; the film is cleared first and
- * the other tiles stay zero.  desc->distrib must be on. */
-il_status il_pm_camera_pass_split(const il_scene *scene, il_film *film, const il_render_desc *desc,
-                                  il_camera_tile_fn tile, const void *method,
-                                  il_camera_pass_result *out, il_error *err);
 /* il_pm_irradiance_build with the points split across the processes of d
  * (contiguous ranges) and exchanged: the same map->irr on every process,
  * byte for byte, as il_pm_irradiance_build's.  d off: il_pm_irradiance_build. */

@@ -8,20 +8,13 @@
  * order are the single-process arrays byte for byte; every process then
  * builds the same maps.
  *
- * Camera pass: 16x16 tiles as in camera_pass.c, tile t on process t mod N,
- * each with all its samples at once.  The tile callback adds a pixel's
- * samples in increasing index, as the passes of il_camera_pass_tiles do one
- * after the other, so every pixel's sums are the same doubles; pixels of
- * other processes stay zero, and x + 0 = x makes the summed films exact. */
-#include <omp.h>
+ * Camera pass: il_camera_pass_tiles's own split (every size-th tile). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "methods/distrib.h"
 #include "methods/photon/pm.h"
-
-#define IL_PM_DISTRIB_TILE 16u
 
 il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
                             const il_distrib *d, il_pm_photons *out, il_error *err)
@@ -112,44 +105,4 @@ il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
     free(all);
     free(counts);
     return st;
-}
-
-il_status il_pm_camera_pass_split(const il_scene *scene, il_film *film, const il_render_desc *desc,
-                                  il_camera_tile_fn tile_fn, const void *method,
-                                  il_camera_pass_result *out, il_error *err)
-{
-    const il_distrib *d = desc->distrib;
-    il_camera_pass_ctx ctx = il_camera_pass_ctx_make(scene, film, desc);
-    uint32_t spp = desc->spp ? desc->spp : 16u;
-    int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
-    uint32_t tiles_x = (ctx.width + IL_PM_DISTRIB_TILE - 1) / IL_PM_DISTRIB_TILE;
-    uint32_t tiles = tiles_x * ((ctx.height + IL_PM_DISTRIB_TILE - 1) / IL_PM_DISTRIB_TILE);
-    uint32_t rank = (uint32_t)d->rank, size = (uint32_t)d->size;
-    uint32_t mine = tiles > rank ? (tiles - rank + size - 1) / size : 0; /* t = rank + k size */
-
-    il_film_clear(film);
-    double t0 = omp_get_wtime();
-    uint64_t rays = 0, bad = 0;
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : rays, bad)
-    for (uint32_t k = 0; k < mine; k++) {
-        uint32_t t = rank + k * size;
-        uint32_t x0 = (t % tiles_x) * IL_PM_DISTRIB_TILE, y0 = (t / tiles_x) * IL_PM_DISTRIB_TILE;
-        il_camera_tile tile = {
-            .x0 = x0,
-            .y0 = y0,
-            .x1 = x0 + IL_PM_DISTRIB_TILE < ctx.width ? x0 + IL_PM_DISTRIB_TILE : ctx.width,
-            .y1 = y0 + IL_PM_DISTRIB_TILE < ctx.height ? y0 + IL_PM_DISTRIB_TILE : ctx.height,
-            .first = 0,
-            .count = spp,
-        };
-        tile_fn(method, &ctx, &tile);
-        rays += tile.rays;
-        bad += tile.nonfinite;
-    }
-    out->spp = spp;
-    out->rays = rays;
-    out->nonfinite_samples = bad;
-    out->seconds = omp_get_wtime() - t0;
-    (void)err;
-    return IL_OK;
 }

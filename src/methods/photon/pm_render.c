@@ -201,10 +201,8 @@ il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_des
                        .out_of_memory = &oom};
         il_camera_pass_result r = {0};
         double t1 = omp_get_wtime();
-        /* Split across processes: this process's tiles (pm_distrib.c). */
-        s = il_distrib_on(desc->distrib)
-                ? il_pm_camera_pass_split(scene, film, desc, pm_tile, &m, &r, err)
-                : il_camera_pass_tiles(scene, film, desc, pm_tile, &m, 0, &r, err);
+        /* Split across processes: this process's tiles (camera_pass.c). */
+        s = il_camera_pass_tiles(scene, film, desc, pm_tile, &m, 0, &r, err);
         stats->photon.seconds_render = omp_get_wtime() - t1;
         if (s == IL_OK && atomic_load(&oom))
             s = il_fail(err, IL_ERR_MEMORY, "photon: out of memory gathering photons");

@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "core/error.h"
-#include "methods/distrib.h"
 #include "methods/radiosity/rad.h"
 
 /* The big arrays of a mesh (its BVH not counted): for peak_bytes. */
@@ -198,15 +197,9 @@ il_status il_rad_render(const il_scene *scene, il_film *film, const il_render_de
     il_render_stats local;
     if (!stats)
         stats = &local;
-    const il_distrib *d = desc ? desc->distrib : NULL;
-    if (il_distrib_on(d) && d->rank > 0) {
-        /* Split across processes: every process solves (its share of the
-         * form factors, rad_solve_distrib.c) and process 0 renders the
-         * whole film; the others' films stay zero, so the sum is its film. */
-        il_status st = il_rad_run(scene, desc, NULL, NULL, NULL, stats, err);
-        il_film_clear(film);
-        return st;
-    }
+    /* Split across processes (desc->distrib) every process solves (its
+     * share of the work, exchanged) and renders its share of the camera
+     * pass's tiles (camera_pass.c): the films add up to one process's. */
     return il_patch_solve_and_render(scene, film, desc, rad_solve, stats,
                                      &stats->radiosity.seconds_render, err);
 }

@@ -61,10 +61,6 @@ expect_exit 1 "rank without its scene" -- "${MPI[@]}" -np 1 "$ILLUM" render "${r
 expect_stderr "rank 1 failed before the render began" "rank without its scene"
 expect_no_file bad2.pfm "rank without its scene"
 # (--time under mpirun: test_cli_mpi_checkpoint.sh)
-# What is not distributed says so.
-# (photon, sppm and radiosity run split: test_cli_mpi_methods.sh)
-expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --method rsm -q -o r.pfm
-expect_stderr "supports --method pt, photon, sppm, radiosity and hr" "rsm under mpirun"
-expect_no_file r.pfm "rsm under mpirun"
+# (the other methods run split: test_cli_mpi_methods.sh)
 
 finish

@@ -1,6 +1,6 @@
-# Photon mapping, SPPM, radiosity and hierarchical radiosity under mpirun
-# (docs/distributed.md, "Photon mapping, SPPM and radiosity"), registered only
-# with -DIL_MPI=ON:
+# Every method but the path tracer under mpirun (docs/distributed.md: photon
+# mapping, SPPM, radiosity, hierarchical radiosity, IBL, Linespace, RSM),
+# registered only with -DIL_MPI=ON:
 # -np 2 and -np 3 on localhost give the single-process film bit for bit.
 . "$(dirname "$0")/../lib.bash"
 : "${MPIEXEC:?}"
@@ -65,6 +65,13 @@ same_as_single hr "2 3" -- "${base[@]}" --method hr
 # 2 threads per rank.
 same_as_single hr-spheres "2" -- cornell-spheres --width 40 --height 28 --spp 2 --seed 7 \
     --threads 2 --method hr --vis-rays 9
+# The image methods with a precomputation every rank repeats (the same on
+# each) and camera tiles split: Linespace, reflective shadow maps (with the
+# shadow test), the environment as lights.
+same_as_single linespace "2 3" -- "${base[@]}" --method linespace --linespace-n 2 --inject-rays 20000
+same_as_single rsm "2" -- "${base[@]}" --method rsm --rsm-size 64 --rsm-samples 32 --rsm-shadow-test on
+env_map="${IL_SHARED_DIR:-$IL_SOURCE_DIR/../shared}/scenes/envmaps/polyhaven_venice_sunset_1k.hdr"
+same_as_single ibl "2 3" -- "${base[@]}" --method ibl --env "$env_map" --lights 32 --batch 8
 expect_exit 0 "hr verbose" -- "${MPI[@]}" -np 2 "$ILLUM" render "${base[@]}" --method hr -o hv.pfm
 expect_stderr "mpi: 2 ranks, hr: .* exchanges, .* MB gathered" "hr verbose"
 
@@ -85,9 +92,5 @@ expect_exit 1 "sppm --time under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render co
     --height 16 --method sppm --time 1 --threads 1 -q -o t.pfm
 expect_stderr "renders a pass count, not for a time" "sppm --time under mpirun"
 expect_no_file t.pfm "sppm --time under mpirun"
-expect_exit 1 "rsm under mpirun" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --width 16 \
-    --height 16 --method rsm --threads 1 -q -o h.pfm
-expect_stderr "supports --method pt, photon, sppm, radiosity and hr" "rsm under mpirun"
-expect_no_file h.pfm "rsm under mpirun"
 
 finish
