@@ -35,6 +35,9 @@ typedef struct il_cuda_scene {
     ilk_material *materials;
     uint32_t *lights;
     float *light_cdf;
+    ilk_light *pt_lights;
+    float *pt_light_cdf;
+    ilk_tri_normals *normals;      /* NULL when the scene has none */
     ilk_scene view;                /* ks->view with the device pointers */
 } il_cuda_scene;
 
@@ -45,6 +48,9 @@ static inline void il_cuda_scene_free(il_cuda_scene *d)
     cudaFree(d->materials);
     cudaFree(d->lights);
     cudaFree(d->light_cdf);
+    cudaFree(d->pt_lights);
+    cudaFree(d->pt_light_cdf);
+    cudaFree(d->normals);
     memset(d, 0, sizeof *d);
 }
 
@@ -57,7 +63,12 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
         (st = il_cuda_upload(&d->tris, ks->bvh.tris, ks->bvh.num_tris, "uploading the triangles", err)) != IL_OK ||
         (st = il_cuda_upload(&d->materials, ks->materials, ks->num_materials, "uploading the materials", err)) != IL_OK ||
         (st = il_cuda_upload(&d->lights, ks->lights, ks->num_lights, "uploading the lights", err)) != IL_OK ||
-        (st = il_cuda_upload(&d->light_cdf, ks->light_cdf, ks->num_lights + 1, "uploading the light CDF", err)) != IL_OK) {
+        (st = il_cuda_upload(&d->light_cdf, ks->light_cdf, ks->num_lights + 1, "uploading the light CDF", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->pt_lights, ks->pt_lights, ks->num_pt_lights, "uploading the light table", err)) != IL_OK ||
+        (st = il_cuda_upload(&d->pt_light_cdf, ks->pt_light_cdf, ks->num_pt_lights + 1, "uploading the light table CDF",
+                             err)) != IL_OK ||
+        (ks->normals &&
+         (st = il_cuda_upload(&d->normals, ks->normals, ks->num_normals, "uploading the vertex normals", err)) != IL_OK)) {
         il_cuda_scene_free(d);
         return st;
     }
@@ -67,26 +78,41 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.materials = d->materials;
     d->view.lights = d->lights;
     d->view.light_cdf = d->light_cdf;
+    d->view.pt_lights = d->pt_lights;
+    d->view.pt_light_cdf = d->pt_light_cdf;
+    d->view.normals = d->normals;
     return IL_OK;
 }
 
+typedef il_status (*il_kscene_builder)(const il_scene *, uint32_t, uint32_t, uint32_t, uint64_t, il_kscene *,
+                                        il_error *);
+
 /* An image render's start: a non-empty image, a usable GPU, the kernel
- * scene built (il_kscene_build) and uploaded.  On failure nothing is left
- * to free; on success free d, then ks. */
-static inline il_status il_cuda_scene_prepare(const il_scene *scene, uint32_t width, uint32_t height,
-                                              uint32_t max_depth, uint64_t seed, il_kscene *ks, il_cuda_scene *d,
-                                              il_error *err)
+ * scene built (by `build`: il_kscene_build, or il_kscene_build_pt for the
+ * path kernel) and uploaded.  On failure nothing is left to free; on
+ * success free d, then ks. */
+static inline il_status il_cuda_scene_prepare_with(il_kscene_builder build, const il_scene *scene, uint32_t width,
+                                                   uint32_t height, uint32_t max_depth, uint64_t seed, il_kscene *ks,
+                                                   il_cuda_scene *d, il_error *err)
 {
     if (width == 0 || height == 0)
         return il_fail(err, IL_ERR_INVALID, "CUDA render: empty image");
     il_status st = il_cuda_require_device(err);
     if (st != IL_OK)
         return st;
-    if ((st = il_kscene_build(scene, width, height, max_depth, seed, ks, err)) != IL_OK)
+    if ((st = build(scene, width, height, max_depth, seed, ks, err)) != IL_OK)
         return st;
     if ((st = il_cuda_scene_upload(ks, d, err)) != IL_OK)
         il_kscene_free(ks);
     return st;
+}
+
+/* il_cuda_scene_prepare_with il_kscene_build (the photon kernels). */
+static inline il_status il_cuda_scene_prepare(const il_scene *scene, uint32_t width, uint32_t height,
+                                              uint32_t max_depth, uint64_t seed, il_kscene *ks, il_cuda_scene *d,
+                                              il_error *err)
+{
+    return il_cuda_scene_prepare_with(il_kscene_build, scene, width, height, max_depth, seed, ks, d, err);
 }
 
 #endif

@@ -1,6 +1,8 @@
 /* The path-tracing megakernel: one thread per pixel runs ilk_path_sample
  * (kernel/kernel_path.h, the code the CPU tests check against il_render)
- * for a batch of its samples, progressively (cuda/cuda_image.h).  The scene's flat arrays are copied with cudaMalloc/cudaMemcpy;
+ * for a batch of its samples, progressively (cuda/cuda_image.h).  The scene
+ * is packed by il_kscene_build_pt (Phong, delta lights, a uniform sky) and
+ * its flat arrays are copied with cudaMalloc/cudaMemcpy;
  * nothing is managed memory. */
 #include "cuda/cuda_backend.h"
 #include "cuda/cuda_image.h"
@@ -21,7 +23,7 @@ extern "C" il_status il_cuda_render_pt(const il_scene *scene, uint32_t width, ui
 {
     il_kscene ks;
     il_cuda_scene d;
-    il_status st = il_cuda_scene_prepare(scene, width, height, max_depth, seed, &ks, &d, err);
+    il_status st = il_cuda_scene_prepare_with(il_kscene_build_pt, scene, width, height, max_depth, seed, &ks, &d, err);
     if (st != IL_OK)
         return st;
     st = il_cuda_progressive_image(pt_sampler{d.view}, width, height, spp ? spp : 16, PT_BATCH, rgb, NULL,

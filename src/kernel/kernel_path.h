@@ -1,32 +1,57 @@
 /* One path-traced camera sample, shared by the CPU (gcc) and the GPU
  * megakernel (src/cuda/pt_kernel.cu): pinhole camera as scene/camera.c,
- * diffuse surfaces and front-face area emitters, next-event estimation on the
- * emissive triangles (chosen by power) at every vertex, cosine-weighted
- * bounces.  Emission is counted on camera rays only, so every path length is
- * estimated once, by NEE (pbrt-v4 section 13.4 without MIS: unbiased, and the
- * same expectation as the CPU path tracer's NEE + MIS).  Random numbers: the
- * CPU's Owen-scrambled Sobol sampler (kernel/kernel_sobol.h, the same
- * numbers as core/sampler.c for a (seed, pixel, sample, dimension)), the
- * camera jitter in dimensions 0-1 and three pairs per vertex (light choice,
- * point on the light, bounce), so the result does not depend on how pixels
- * are split among threads or GPU blocks.  The CPU path tracer spends its
- * dimensions differently (MIS, its own BSDF sampling), so images agree in
- * expectation, not bit for bit.  The PCG32 stream below (ilk_rng) is for
- * the photon kernels. */
+ * Lambertian, normalised Phong, mirror and glass surfaces
+ * (kernel/kernel_bsdf.h, the CPU's scene/bsdf.c) with interpolated shading
+ * normals as il_scene_surface,
+ * front-face (or two-sided) area emitters, point, spot and directional
+ * lights and a uniform environment.  At every vertex next-event estimation
+ * picks one light of the path-tracing light table (emissive triangles and
+ * the delta lights, by power, as scene/lights.c) and BSDF sampling continues
+ * the path (mirror and glass vertices skip NEE: only BSDF sampling can find
+ * what they see).  Area emission is counted on camera rays and after mirror
+ * or glass bounces, and otherwise by NEE, so every path is estimated once (pbrt-v4 section 13.4 without
+ * MIS: unbiased, the same expectation as the CPU path tracer's NEE + MIS);
+ * delta lights are reachable by NEE only and the environment by BSDF
+ * sampling only (an escaping ray picks up its radiance), so neither needs
+ * MIS either.  Random numbers: the CPU's Owen-scrambled Sobol sampler
+ * (kernel/kernel_sobol.h, the same numbers as core/sampler.c for a (seed,
+ * pixel, sample, dimension)), the camera jitter in dimensions 0-1 and three
+ * pairs per vertex (light choice and BSDF lobe choice, point on the light,
+ * bounce direction), so the result does not depend on how pixels are split
+ * among threads or GPU blocks.  The CPU path tracer spends its dimensions
+ * differently (MIS, Russian roulette), so images agree in expectation, not
+ * bit for bit.  The PCG32 stream below (ilk_rng) is for the photon
+ * kernels. */
 #ifndef IL_KERNEL_PATH_H
 #define IL_KERNEL_PATH_H
 
+#include "kernel/kernel_bsdf.h"
 #include "kernel/kernel_bvh.h"
 #include "kernel/kernel_sobol.h"
 
-#define ILK_PI 3.14159265358979323846f
+/* ilk_light.kind */
+#define ILK_LIGHT_AREA 0u
+#define ILK_LIGHT_POINT 1u
+#define ILK_LIGHT_SPOT 2u
+#define ILK_LIGHT_DIRECTIONAL 3u
 
-typedef struct ilk_material {
-    ilk_vec3 diffuse;      /* albedo */
-    uint32_t two_sided;    /* emits from both faces */
-    ilk_vec3 emission;     /* radiance */
-    uint32_t pad;
-} ilk_material;
+/* One entry of the path kernel's light table (scene/lights.c's il_light). */
+typedef struct ilk_light {
+    ilk_vec3 position;     /* POINT, SPOT */
+    uint32_t kind;         /* ILK_LIGHT_* */
+    ilk_vec3 direction;    /* SPOT, DIRECTIONAL: unit, the way light travels */
+    uint32_t tri;          /* AREA: index into tris */
+    ilk_vec3 intensity;    /* POINT, SPOT: W/sr; DIRECTIONAL: irradiance W/m^2 */
+    float cos_cutoff;      /* SPOT */
+    float spot_exponent;   /* SPOT */
+    float pad[3];
+} ilk_light;
+
+/* The vertex normals of one triangle (of tris[i], leaf order), as the mesh
+ * gives them; all zero when it has none. */
+typedef struct ilk_tri_normals {
+    ilk_vec3 n[3];
+} ilk_tri_normals;
 
 typedef struct ilk_camera {
     ilk_vec3 position, forward, right, up;
@@ -38,10 +63,18 @@ typedef struct ilk_camera {
 typedef struct ilk_scene {
     ilk_bvh bvh;
     const ilk_material *materials;
-    const uint32_t *lights;        /* emissive triangles (indices into tris) */
+    const uint32_t *lights;        /* emissive triangles (indices into tris), for the photon kernels */
     const float *light_cdf;        /* num_lights + 1 entries, by power */
     uint32_t num_lights;
     float epsilon;                 /* ray offset, as il_trace_epsilon */
+    /* The path kernel's light table: emissive triangles and point, spot and
+     * directional lights, chosen by power (pt_light_cdf, num_pt_lights + 1). */
+    const ilk_light *pt_lights;
+    const float *pt_light_cdf;
+    uint32_t num_pt_lights;
+    uint32_t has_environment;      /* a uniform sky of radiance `environment` */
+    ilk_vec3 environment;
+    const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
     ilk_camera camera;
     uint32_t width, height, max_depth;
     uint64_t seed;
@@ -81,19 +114,6 @@ IL_DEVICE_INLINE ilk_rng ilk_rng_for(uint64_t seed, uint64_t pixel, uint32_t sam
     return r;
 }
 
-/* Cosine-weighted direction around the unit normal n (Malley's method,
- * pbrt-v4 section A.5.3) in the basis of Duff et al. 2017 (JCGT 6(1)). */
-IL_DEVICE_INLINE ilk_vec3 ilk_cosine_dir(ilk_vec3 n, float u1, float u2)
-{
-    float r = sqrtf(u1), phi = 2.0f * ILK_PI * u2;
-    float x = r * cosf(phi), y = r * sinf(phi), z = sqrtf(ilk_maxf(0.0f, 1.0f - u1));
-    float sign = n.z >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-    ilk_vec3 s = ilk_v3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    ilk_vec3 t = ilk_v3(b, sign + n.y * n.y * a, -n.y);
-    return ilk_add(ilk_add(ilk_scale(s, x), ilk_scale(t, y)), ilk_scale(n, z));
-}
-
 /* The light with cdf[i] <= u < cdf[i+1] (binary search). */
 IL_DEVICE_INLINE uint32_t ilk_pick_light(const float *cdf, uint32_t n, float u)
 {
@@ -108,49 +128,131 @@ IL_DEVICE_INLINE uint32_t ilk_pick_light(const float *cdf, uint32_t n, float u)
     return lo;
 }
 
-/* Direct light at p (unit normal n facing the incoming side, albedo rho):
- * one emissive triangle by power (u), one uniform point on it (u1, u2;
- * pbrt-v4 section 6.5), the area-measure estimator
- * Le f cos cos' / (d^2 p_light p_area). */
-IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n, ilk_vec3 rho, float u, float u1,
-                                     float u2)
+/* The geometric and shading normals of triangle `tri` at barycentrics
+ * (b1, b2), as il_scene_surface: the normals interpolated when the mesh has
+ * them, and the geometric normal then turned to their side (authored
+ * normals say which side is the front). */
+IL_DEVICE_INLINE void ilk_surface_normals(const ilk_scene *sc, uint32_t tri, float b1, float b2, ilk_vec3 *ng,
+                                          ilk_vec3 *ns)
+{
+    const ilk_tri *t = &sc->bvh.tris[tri];
+    *ng = ilk_normalize(ilk_cross(t->e1, t->e2));
+    *ns = *ng;
+    if (!sc->normals)
+        return;
+    const ilk_tri_normals *tn = &sc->normals[tri];
+    float b0 = 1.0f - b1 - b2;
+    ilk_vec3 n = ilk_add(ilk_add(ilk_scale(tn->n[0], b0), ilk_scale(tn->n[1], b1)), ilk_scale(tn->n[2], b2));
+    float l = sqrtf(ilk_dot(n, n));
+    if (l > 1e-6f && l < INFINITY) {
+        *ns = ilk_scale(n, 1.0f / l);
+        if (ilk_dot(*ns, *ng) < 0.0f)
+            *ng = ilk_scale(*ng, -1.0f);
+    }
+}
+
+/* p moved off its surface (geometric normal ng) to the side of dir, by the
+ * tracer's epsilon grown with the coordinates' magnitude, as
+ * il_offset_origin (float spacing grows with it). */
+IL_DEVICE_INLINE ilk_vec3 ilk_offset(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 ng, ilk_vec3 dir)
+{
+    float mag = ilk_maxf(fabsf(p.x), ilk_maxf(fabsf(p.y), fabsf(p.z)));
+    float eps = sc->epsilon + mag * 4.0f * 1.1920929e-7f;
+    return ilk_add(p, ilk_scale(ng, ilk_dot(ng, dir) >= 0.0f ? eps : -eps));
+}
+
+/* Next-event estimation at p (BSDF b, outgoing wo): one light of the path
+ * table by power (u), for an area light one uniform point on its triangle
+ * (u1, u2; pbrt-v4 section 6.5), and a shadow ray.  Returns
+ * f Li |cos theta_i| / pdf, where for an area light Li = Le and pdf is the
+ * choice probability times the solid-angle density
+ * d^2 / (A |cos theta_l|) (pbrt-v4 equation 4.9), and for a delta light
+ * (scene/lights.c, pbrt-v4 12.1-12.4) Li = I / d^2 (times the spot's
+ * cos^n profile inside its cut-off) or the directional irradiance E, and
+ * pdf is the choice probability. */
+IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk_vec3 p, ilk_vec3 wo, float u,
+                                     float u1, float u2)
 {
     ilk_vec3 zero = ilk_v3(0, 0, 0);
-    if (sc->num_lights == 0)
+    if (sc->num_pt_lights == 0)
         return zero;
-    uint32_t li = ilk_pick_light(sc->light_cdf, sc->num_lights, u);
-    float pmf = sc->light_cdf[li + 1] - sc->light_cdf[li];
+    uint32_t li = ilk_pick_light(sc->pt_light_cdf, sc->num_pt_lights, u);
+    float pmf = sc->pt_light_cdf[li + 1] - sc->pt_light_cdf[li];
     if (!(pmf > 0.0f))
         return zero;
-    const ilk_tri *lt = &sc->bvh.tris[sc->lights[li]];
-    const ilk_material *lm = &sc->materials[lt->pad];
-    float su = sqrtf(u1), b1 = u2 * su, b0 = 1.0f - su;
-    ilk_vec3 q = ilk_add(lt->v0, ilk_add(ilk_scale(lt->e1, 1.0f - b0 - b1), ilk_scale(lt->e2, b1)));
-    ilk_vec3 c = ilk_cross(lt->e1, lt->e2);
-    float area2 = sqrtf(ilk_dot(c, c));
-    if (!(area2 > 0.0f))
+    const ilk_light *l = &sc->pt_lights[li];
+    ilk_vec3 wi, Li, target, target_n = zero;
+    float pdf = pmf, dist = INFINITY;
+    if (l->kind == ILK_LIGHT_DIRECTIONAL) {
+        wi = ilk_scale(l->direction, -1.0f);
+        Li = l->intensity;
+        target = zero;
+    } else {
+        if (l->kind == ILK_LIGHT_AREA) {
+            const ilk_tri *lt = &sc->bvh.tris[l->tri];
+            float su = sqrtf(u1), lb2 = u2 * su, lb1 = su - lb2;
+            target = ilk_add(lt->v0, ilk_add(ilk_scale(lt->e1, lb1), ilk_scale(lt->e2, lb2)));
+            ilk_vec3 unused;
+            ilk_surface_normals(sc, l->tri, lb1, lb2, &target_n, &unused);
+        } else {
+            target = l->position;
+        }
+        ilk_vec3 d = ilk_sub(target, p);
+        float dist2 = ilk_dot(d, d);
+        if (!(dist2 > 0.0f))
+            return zero;
+        dist = sqrtf(dist2);
+        wi = ilk_scale(d, 1.0f / dist);
+        if (l->kind == ILK_LIGHT_AREA) {
+            const ilk_tri *lt = &sc->bvh.tris[l->tri];
+            const ilk_material *lm = &sc->materials[lt->pad];
+            ilk_vec3 c = ilk_cross(lt->e1, lt->e2);
+            float area = 0.5f * sqrtf(ilk_dot(c, c)), cos_l = ilk_dot(target_n, wi);
+            if (!lm->two_sided && !(cos_l < 0.0f))
+                return zero;                   /* the back of a one-sided emitter */
+            cos_l = fabsf(cos_l);
+            if (!(cos_l > 0.0f) || !(area > 0.0f))
+                return zero;
+            pdf = pmf * dist2 / (area * cos_l);
+            Li = lm->emission;
+        } else {
+            float scale = 1.0f / dist2;
+            if (l->kind == ILK_LIGHT_SPOT) {
+                float c = -ilk_dot(l->direction, wi);
+                if (c < l->cos_cutoff)
+                    return zero;
+                if (l->spot_exponent > 0.0f) {
+                    if (c <= 0.0f)
+                        return zero;
+                    scale *= powf(c, l->spot_exponent);
+                }
+            }
+            Li = ilk_scale(l->intensity, scale);
+        }
+    }
+    if (!(pdf > 0.0f) || !(pdf < INFINITY) || !ilk_sides_agree(b, wo, wi))
         return zero;
-    ilk_vec3 nl = ilk_scale(c, 1.0f / area2);
-    ilk_vec3 d = ilk_sub(q, p);
-    float dist2 = ilk_dot(d, d);
-    if (!(dist2 > 0.0f))
+    float bsdf_pdf;
+    ilk_vec3 f = ilk_bsdf_eval(b, wo, wi, &bsdf_pdf);
+    float cos_i = fabsf(ilk_dot(wi, b->ns));
+    if (!(cos_i > 0.0f) || (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f))
         return zero;
-    float dist = sqrtf(dist2);
-    ilk_vec3 w = ilk_scale(d, 1.0f / dist);
-    float cos_p = ilk_dot(n, w), cos_l = -ilk_dot(nl, w);
-    if (lm->two_sided)
-        cos_l = cos_l < 0.0f ? -cos_l : cos_l;
-    if (!(cos_p > 0.0f) || !(cos_l > 0.0f))
-        return zero;
+    /* The shadow ray, offset at both ends as il_shadow_ray (an area
+     * light's end off its surface; a point light's is a point in space). */
     ilk_ray shadow;
-    shadow.org = ilk_add(p, ilk_scale(n, sc->epsilon));
-    shadow.dir = ilk_sub(q, shadow.org);
+    shadow.org = ilk_offset(sc, p, b->ng, wi);
     shadow.tmin = 0.0f;
-    shadow.tmax = 1.0f - 1e-4f;
+    if (dist < INFINITY) {
+        ilk_vec3 end = l->kind == ILK_LIGHT_AREA ? ilk_offset(sc, target, target_n, ilk_scale(wi, -1.0f)) : target;
+        shadow.dir = ilk_sub(end, shadow.org);
+        shadow.tmax = 1.0f - 1e-4f;
+    } else {
+        shadow.dir = wi;
+        shadow.tmax = INFINITY;
+    }
     if (ilk_bvh_occluded(&sc->bvh, &shadow))
         return zero;
-    float g = cos_p * cos_l / dist2 * (0.5f * area2) / pmf * (1.0f / ILK_PI);
-    return ilk_scale(ilk_mul(lm->emission, rho), g);
+    return ilk_scale(ilk_mul(f, Li), cos_i / pdf);
 }
 
 /* The pinhole camera ray through film position (x + u, y + v), as
@@ -168,7 +270,10 @@ IL_DEVICE_INLINE ilk_ray ilk_camera_ray(const ilk_camera *cam, uint32_t x, uint3
     return ray;
 }
 
-/* The radiance of one camera sample through pixel (x, y). */
+/* The radiance of one camera sample through pixel (x, y).  `depth` counts
+ * the scattering events before the current ray; max_depth bounds them as
+ * the CPU's max_depth does (after the last one only what its BSDF-sampled
+ * ray finds is counted: here the environment). */
 IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint32_t y, uint32_t sample)
 {
     ilk_sobol smp = ilk_sobol_start(sc->seed, (uint64_t)y * sc->width + x, sample);
@@ -176,33 +281,46 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
     ilk_sobol_2d(&smp, &u, &v);
     ilk_ray ray = ilk_camera_ray(&sc->camera, x, y, u, v);
     ilk_vec3 L = ilk_v3(0, 0, 0), beta = ilk_v3(1, 1, 1);
+    /* Area emission is counted where NEE could not reach it: on camera
+     * rays and after a mirror or glass bounce. */
+    bool counts_emission = true;
     for (uint32_t depth = 0;; depth++) {
         ilk_hit h;
-        if (!ilk_bvh_closest(&sc->bvh, &ray, &h))
+        if (!ilk_bvh_closest(&sc->bvh, &ray, &h)) {
+            if (sc->has_environment)
+                L = ilk_add(L, ilk_mul(beta, sc->environment));
             break;
+        }
         const ilk_tri *tr = &sc->bvh.tris[h.tri];
-        const ilk_material *m = &sc->materials[tr->pad];
-        ilk_vec3 ng = ilk_normalize(ilk_cross(tr->e1, tr->e2));
-        float side = ilk_dot(ng, ray.dir);
-        if (depth == 0 && (side < 0.0f || m->two_sided))
-            L = ilk_add(L, ilk_mul(beta, m->emission));
+        ilk_bsdf b;
+        b.m = &sc->materials[tr->pad];
+        ilk_surface_normals(sc, h.tri, h.b1, h.b2, &b.ng, &b.ns);
+        ilk_vec3 wo = ilk_scale(ray.dir, -1.0f);
+        if (counts_emission && (ilk_dot(b.ng, wo) > 0.0f || b.m->two_sided))
+            L = ilk_add(L, ilk_mul(beta, b.m->emission));
         if (depth >= sc->max_depth)
             break;
-        ilk_vec3 n = side < 0.0f ? ng : ilk_scale(ng, -1.0f);
         ilk_vec3 p = ilk_add(ray.org, ilk_scale(ray.dir, h.t));
-        float ul, unused, u1, u2;
-        ilk_sobol_2d(&smp, &ul, &unused);
+        bool delta = ilk_bsdf_is_delta(b.m);
+        float ul, u_lobe, u1, u2;
+        ilk_sobol_2d(&smp, &ul, &u_lobe);
         ilk_sobol_2d(&smp, &u1, &u2);
-        L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, p, n, m->diffuse, ul, u1, u2)));
-        if (depth + 1 >= sc->max_depth)
-            break;
-        /* Lambertian: f cos / pdf = rho. */
-        beta = ilk_mul(beta, m->diffuse);
-        if (beta.x <= 0.0f && beta.y <= 0.0f && beta.z <= 0.0f)
+        if (!delta)
+            L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2)));
+        /* The last bounce only matters when what it finds is counted: the
+         * sky, or an emitter seen through a mirror or glass. */
+        if (depth + 1 >= sc->max_depth && !sc->has_environment && !delta)
             break;
         ilk_sobol_2d(&smp, &u1, &u2);
-        ray.dir = ilk_cosine_dir(n, u1, u2);
-        ray.org = ilk_add(p, ilk_scale(n, sc->epsilon));
+        ilk_vec3 wi, weight;
+        if (!ilk_bsdf_sample(&b, wo, u_lobe, u1, u2, &wi, &weight) || !ilk_sides_agree(&b, wo, wi))
+            break;
+        beta = ilk_mul(beta, weight);
+        counts_emission = delta;
+        if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
+            break;
+        ray.dir = wi;
+        ray.org = ilk_offset(sc, p, b.ng, wi);
         ray.tmin = 0.0f;
         ray.tmax = INFINITY;
     }

@@ -10,54 +10,124 @@
 
 static ilk_vec3 to_k(il_vec3 v) { return ilk_v3(v.x, v.y, v.z); }
 
-il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
-                          uint64_t seed, il_kscene *out, il_error *err)
+/* What the kernels cannot render yet, refused with a clear message: the
+ * photon kernels (extended false) know untextured diffuse surfaces and
+ * emissive triangles, the path kernel (extended true) also Phong, mirror
+ * and glass surfaces, delta lights and a uniform sky. */
+static il_status check_supported(const il_scene *scene, bool extended, il_error *err)
 {
-    memset(out, 0, sizeof *out);
-    if (!scene->committed)
-        return il_fail(err, IL_ERR_INVALID, "kernel scene: the scene is not committed");
     for (uint32_t i = 0; i < scene->num_materials; i++) {
         const il_material *m = &scene->materials[i];
-        if (m->type != IL_MATERIAL_DIFFUSE || m->diffuse_texture)
-            return il_fail(err, IL_ERR_INVALID, "material '%s': only untextured diffuse materials "
-                           "run on the GPU so far (docs/cuda.md)", m->name);
+        if (m->diffuse_texture)
+            return il_fail(err, IL_ERR_INVALID, "material '%s': textured materials do not run on the GPU "
+                           "yet (docs/cuda.md)", m->name);
+        if (!extended && m->type != IL_MATERIAL_DIFFUSE)
+            return il_fail(err, IL_ERR_INVALID, "material '%s': only untextured diffuse materials run on "
+                           "the GPU photon kernels so far (docs/cuda.md)", m->name);
     }
-    if (scene->num_user_lights || scene->has_environment)
+    if (!extended && (scene->num_user_lights || scene->has_environment))
         return il_fail(err, IL_ERR_INVALID, "only emissive triangles light a GPU render so far "
                        "(no point, spot or directional lights, no environment; docs/cuda.md)");
-    il_status st = il_kbvh_build_scene(scene, &out->bvh, err);
-    if (st != IL_OK)
-        return st;
-    out->num_materials = scene->num_materials;
-    out->materials = il_calloc(scene->num_materials ? scene->num_materials : 1, sizeof *out->materials, err);
-    if (!out->materials) {
-        il_kscene_free(out);
+    if (extended && scene->has_environment && scene->envmap)
+        return il_fail(err, IL_ERR_INVALID, "only a uniform environment runs on the GPU so far, "
+                       "not an environment map (docs/cuda.md)");
+    return IL_OK;
+}
+
+/* Materials as il_bsdf_init resolves them: colours clamped at zero, a
+ * Phong's kd + ks scaled down to at most 1 per channel (Lafortune &
+ * Willems 1994, section 3), its lobe chosen by the albedos' luminance. */
+static void pack_material(const il_material *m, ilk_material *k)
+{
+    memset(k, 0, sizeof *k);
+    il_vec3 kd = v3_max(m->diffuse, v3s(0.0f)), ks = v3_max(m->specular, v3s(0.0f));
+    k->type = m->type == IL_MATERIAL_MIRROR       ? ILK_MATERIAL_MIRROR
+              : m->type == IL_MATERIAL_DIELECTRIC ? ILK_MATERIAL_DIELECTRIC
+                                                  : ILK_MATERIAL_DIFFUSE;
+    k->diffuse_prob = 1.0f;
+    k->exponent = m->exponent > 0.0f ? m->exponent : 32.0f;
+    k->ior = m->ior > 0.0f ? m->ior : 1.5f;
+    k->specular = to_k(ks);    /* mirror, glass: the tint (scene.c made zero white) */
+    if (m->type == IL_MATERIAL_PHONG) {
+        k->type = ILK_MATERIAL_PHONG;
+        float peak = v3_max_comp(v3_add(kd, ks));
+        if (peak > 1.0f) {
+            kd = v3_scale(kd, 1.0f / peak);
+            ks = v3_scale(ks, 1.0f / peak);
+        }
+        float ld = il_luminance(kd), ls = il_luminance(ks);
+        k->diffuse_prob = ld + ls > 0.0f ? ld / (ld + ls) : 1.0f;
+        k->specular = to_k(ks);
+    }
+    k->diffuse = to_k(kd);
+    k->emission = to_k(m->emission);
+    k->two_sided = m->two_sided;
+}
+
+/* The vertex normals of every triangle in leaf order, or none when no mesh
+ * has normals. */
+static il_status pack_normals(const il_scene *scene, il_kscene *out, il_error *err)
+{
+    bool any = false;
+    for (uint32_t i = 0; i < scene->num_meshes; i++)
+        any = any || scene->meshes[i].normals != NULL;
+    if (!any || out->bvh.num_tris == 0)
+        return IL_OK;
+    out->normals = il_calloc(out->bvh.num_tris, sizeof *out->normals, err);
+    if (!out->normals)
         return IL_ERR_MEMORY;
+    out->num_normals = out->bvh.num_tris;
+    for (uint32_t i = 0; i < out->bvh.num_tris; i++) {
+        const ilk_tri *t = &out->bvh.tris[i];
+        const il_mesh *m = &scene->meshes[t->mesh];
+        if (!m->normals)
+            continue;
+        const uint32_t *ix = m->indices + 3 * (size_t)t->prim;
+        for (int k = 0; k < 3; k++)
+            out->normals[i].n[k] = to_k(m->normals[ix[k]]);
     }
-    for (uint32_t i = 0; i < scene->num_materials; i++) {
-        const il_material *m = &scene->materials[i];
-        out->materials[i].diffuse = to_k(m->diffuse);
-        out->materials[i].emission = to_k(m->emission);
-        out->materials[i].two_sided = m->two_sided;
+    return IL_OK;
+}
+
+/* cdf[0..n] of the weights w (uniform when they sum to zero). */
+static void fill_cdf(float *cdf, const double *w, uint32_t n)
+{
+    double total = 0.0, acc = 0.0;
+    for (uint32_t i = 0; i < n; i++)
+        total += w[i];
+    cdf[0] = 0.0f;
+    for (uint32_t i = 0; i < n; i++) {
+        acc += w[i];
+        cdf[i + 1] = total > 0.0 ? (float)(acc / total) : (float)(i + 1) / (float)n;
     }
-    /* Emissive triangles, chosen in proportion to their power
-     * Phi = pi A L (one face; twice for two-sided), by luminance. */
-    uint32_t n = 0;
+    if (n)
+        cdf[n] = 1.0f;
+}
+
+/* The emissive triangles (photon kernels: lights, light_cdf) and the path
+ * kernel's table of those and the scene's point, spot and directional
+ * lights (pt_lights, pt_light_cdf), both in proportion to power as
+ * scene/lights.c: an area light's Phi = pi A L (one face; twice for
+ * two-sided), a delta light's il_light.power, by luminance. */
+static il_status pack_lights(const il_scene *scene, il_kscene *out, il_error *err)
+{
+    uint32_t n = 0, nd = 0;
     for (uint32_t i = 0; i < out->bvh.num_tris; i++)
         n += !v3_is_zero(scene->materials[out->bvh.tris[i].pad].emission);
+    for (uint32_t i = 0; i < scene->num_lights; i++) {
+        il_light_kind k = scene->lights[i].kind;
+        nd += k == IL_LIGHTK_POINT || k == IL_LIGHTK_SPOT || k == IL_LIGHTK_DIRECTIONAL;
+    }
     out->lights = il_malloc(sizeof *out->lights * (n ? n : 1), err);
     out->light_cdf = il_malloc(sizeof *out->light_cdf * (n + 1), err);
-    if (!out->lights || !out->light_cdf) {
-        il_kscene_free(out);
-        return IL_ERR_MEMORY;
+    out->pt_lights = il_calloc(n + nd ? n + nd : 1, sizeof *out->pt_lights, err);
+    out->pt_light_cdf = il_malloc(sizeof *out->pt_light_cdf * (n + nd + 1), err);
+    double *power = malloc(sizeof *power * (n + nd ? n + nd : 1));
+    if (!out->lights || !out->light_cdf || !out->pt_lights || !out->pt_light_cdf || !power) {
+        free(power);
+        return il_fail(err, IL_ERR_MEMORY, "out of memory packing the lights");
     }
-    double total = 0.0;
-    double *power = malloc(sizeof *power * (n ? n : 1));
-    if (!power) {
-        il_kscene_free(out);
-        return il_fail(err, IL_ERR_MEMORY, "out of memory");
-    }
-    n = 0;
+    uint32_t k = 0;
     for (uint32_t i = 0; i < out->bvh.num_tris; i++) {
         const ilk_tri *t = &out->bvh.tris[i];
         const il_material *m = &scene->materials[t->pad];
@@ -65,20 +135,58 @@ il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height
             continue;
         ilk_vec3 c = ilk_cross(t->e1, t->e2);
         double area = 0.5 * sqrt((double)ilk_dot(c, c));
-        power[n] = area * il_luminance(m->emission) * (m->two_sided ? 2.0 : 1.0);
-        total += power[n];
-        out->lights[n++] = i;
+        power[k] = IL_PI * area * il_luminance(m->emission) * (m->two_sided ? 2.0 : 1.0);
+        out->pt_lights[k].kind = ILK_LIGHT_AREA;
+        out->pt_lights[k].tri = i;
+        out->lights[k++] = i;
     }
     out->num_lights = n;
-    double acc = 0.0;
-    out->light_cdf[0] = 0.0f;
-    for (uint32_t i = 0; i < n; i++) {
-        acc += power[i];
-        out->light_cdf[i + 1] = total > 0.0 ? (float)(acc / total) : (float)(i + 1) / (float)n;
+    fill_cdf(out->light_cdf, power, n);
+    for (uint32_t i = 0; i < scene->num_lights; i++) {
+        const il_light *l = &scene->lights[i];
+        ilk_light *d = &out->pt_lights[k];
+        switch (l->kind) {
+        case IL_LIGHTK_POINT: d->kind = ILK_LIGHT_POINT; break;
+        case IL_LIGHTK_SPOT: d->kind = ILK_LIGHT_SPOT; break;
+        case IL_LIGHTK_DIRECTIONAL: d->kind = ILK_LIGHT_DIRECTIONAL; break;
+        default: continue;
+        }
+        d->position = to_k(l->position);
+        d->direction = to_k(l->direction);
+        d->intensity = to_k(l->intensity);
+        d->cos_cutoff = l->cos_cutoff;
+        d->spot_exponent = l->spot_exponent;
+        power[k++] = l->power;
     }
-    if (n)
-        out->light_cdf[n] = 1.0f;
+    out->num_pt_lights = k;
+    fill_cdf(out->pt_light_cdf, power, k);
     free(power);
+    return IL_OK;
+}
+
+static il_status build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth, uint64_t seed,
+                       bool extended, il_kscene *out, il_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!scene->committed)
+        return il_fail(err, IL_ERR_INVALID, "kernel scene: the scene is not committed");
+    il_status st = check_supported(scene, extended, err);
+    if (st != IL_OK)
+        return st;
+    if ((st = il_kbvh_build_scene(scene, &out->bvh, err)) != IL_OK)
+        return st;
+    out->num_materials = scene->num_materials;
+    out->materials = il_calloc(scene->num_materials ? scene->num_materials : 1, sizeof *out->materials, err);
+    if (!out->materials) {
+        il_kscene_free(out);
+        return IL_ERR_MEMORY;
+    }
+    for (uint32_t i = 0; i < scene->num_materials; i++)
+        pack_material(&scene->materials[i], &out->materials[i]);
+    if ((st = pack_normals(scene, out, err)) != IL_OK || (st = pack_lights(scene, out, err)) != IL_OK) {
+        il_kscene_free(out);
+        return st;
+    }
 
     il_camera_desc cd;
     il_scene_get_camera(scene, &cd);
@@ -90,6 +198,13 @@ il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height
     v->lights = out->lights;
     v->light_cdf = out->light_cdf;
     v->num_lights = out->num_lights;
+    v->pt_lights = out->pt_lights;
+    v->pt_light_cdf = out->pt_light_cdf;
+    v->num_pt_lights = out->num_pt_lights;
+    v->normals = out->normals;
+    /* A uniform sky (a map is refused above). */
+    v->has_environment = scene->has_environment ? 1u : 0u;
+    v->environment = scene->has_environment ? to_k(scene->environment.radiance) : ilk_v3(0, 0, 0);
     v->epsilon = il_trace_epsilon(scene->tracer);
     v->camera.position = to_k(cam.position);
     v->camera.forward = to_k(cam.forward);
@@ -106,11 +221,26 @@ il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height
     return IL_OK;
 }
 
+il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
+                          uint64_t seed, il_kscene *out, il_error *err)
+{
+    return build(scene, width, height, max_depth, seed, false, out, err);
+}
+
+il_status il_kscene_build_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
+                             uint64_t seed, il_kscene *out, il_error *err)
+{
+    return build(scene, width, height, max_depth, seed, true, out, err);
+}
+
 void il_kscene_free(il_kscene *ks)
 {
     il_kbvh_free(&ks->bvh);
     free(ks->materials);
     free(ks->lights);
     free(ks->light_cdf);
+    free(ks->pt_lights);
+    free(ks->pt_light_cdf);
+    free(ks->normals);
     memset(ks, 0, sizeof *ks);
 }

@@ -1,6 +1,7 @@
 /* Packs a committed scene into the flat arrays of kernel/kernel_path.h: the
- * BVH, the materials, the emissive triangles with their power CDF and the
- * camera.  CPU only; src/cuda/ copies the arrays to the GPU as they are. */
+ * BVH, the materials, the vertex normals, the emissive triangles with their
+ * power CDF (photon kernels), the path kernel's light table and the camera.
+ * CPU only; src/cuda/ copies the arrays to the GPU as they are. */
 #ifndef IL_KERNEL_SCENE_H
 #define IL_KERNEL_SCENE_H
 
@@ -17,6 +18,9 @@ typedef struct il_kscene {
     ilk_material *materials;  uint32_t num_materials;
     uint32_t *lights;         uint32_t num_lights;
     float *light_cdf;         /* num_lights + 1 */
+    ilk_light *pt_lights;     uint32_t num_pt_lights;
+    float *pt_light_cdf;      /* num_pt_lights + 1 */
+    ilk_tri_normals *normals; uint32_t num_normals;  /* bvh.num_tris, or 0 when no mesh has normals */
     ilk_scene view;           /* host pointers into the arrays above */
 } il_kscene;
 
@@ -25,6 +29,13 @@ typedef struct il_kscene {
  * environment): the caller falls back to, or points the user at, the CPU. */
 il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
                           uint64_t seed, il_kscene *out, il_error *err);
+/* il_kscene_build for the path kernel alone (kernel_path.h), which also
+ * renders Phong, mirror and dielectric materials, point, spot and
+ * directional lights and a uniform environment; IL_ERR_INVALID for
+ * textured materials and environment maps.  The photon kernels must not take its result (they
+ * know only diffuse surfaces and emissive triangles). */
+il_status il_kscene_build_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
+                             uint64_t seed, il_kscene *out, il_error *err);
 void il_kscene_free(il_kscene *ks);
 
 #ifdef __cplusplus
