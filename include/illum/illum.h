@@ -654,6 +654,14 @@ typedef struct il_distrib {
      * non-zero fails the render. */
     int (*allgather)(void *user, const void *data, size_t bytes, void **out, size_t *counts);
     void *user;
+    /* Optional, dynamic load balancing of the camera pass's tiles: adds
+     * `count` to a counter shared by all processes (0 at the start of the
+     * render) and returns its value before, the first of the tiles this
+     * process then renders; a fast process claims more often.  Called only
+     * from the thread that called il_render, at most once per render's
+     * camera pass per claim.  NULL: the tiles are dealt statically (tile t
+     * to process t mod size). */
+    uint64_t (*claim)(void *user, uint64_t count);
 } il_distrib;
 
 typedef struct il_render_desc {

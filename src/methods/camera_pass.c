@@ -93,6 +93,45 @@ il_camera_pass_ctx il_camera_pass_ctx_make(const il_scene *scene, il_film *film,
     return ctx;
 }
 
+/* The tiles tile0, tile0 + step, ... (n of them), samples first..first +
+ * count - 1 each, over the threads; their rays and non-finite samples are
+ * added to *rays and *bad. */
+typedef struct tile_run {
+    const il_camera_pass_ctx *ctx;
+    il_camera_tile_fn tile_fn;
+    const void *method;
+    int threads;
+    uint32_t tiles_x;
+    unsigned char *scratch;
+    size_t stride;
+} tile_run;
+
+static void run_tiles(const tile_run *run, uint32_t tile0, uint32_t step, uint32_t n, uint32_t first,
+                      uint32_t count, uint64_t *rays, uint64_t *bad)
+{
+    const il_camera_pass_ctx *ctx = run->ctx;
+    uint64_t r = 0, b = 0;
+#pragma omp parallel for schedule(dynamic) num_threads(run->threads) reduction(+ : r, b)
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t t = tile0 + k * step;
+        uint32_t x0 = (t % run->tiles_x) * IL_TILE, y0 = (t / run->tiles_x) * IL_TILE;
+        il_camera_tile tile = {
+            .x0 = x0,
+            .y0 = y0,
+            .x1 = x0 + IL_TILE < ctx->width ? x0 + IL_TILE : ctx->width,
+            .y1 = y0 + IL_TILE < ctx->height ? y0 + IL_TILE : ctx->height,
+            .first = first,
+            .count = count,
+            .scratch = run->scratch ? run->scratch + (size_t)omp_get_thread_num() * run->stride : NULL,
+        };
+        run->tile_fn(run->method, ctx, &tile);
+        r += tile.rays;
+        b += tile.nonfinite;
+    }
+    *rays += r;
+    *bad += b;
+}
+
 il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_render_desc *desc,
                                il_camera_tile_fn tile_fn, const void *method, size_t scratch_bytes,
                                il_camera_pass_result *out, il_error *err)
@@ -105,13 +144,6 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
     uint64_t pixels = (uint64_t)ctx.width * ctx.height;
     uint32_t tiles_x = (ctx.width + IL_TILE - 1) / IL_TILE;
     uint32_t tiles = tiles_x * ((ctx.height + IL_TILE - 1) / IL_TILE);
-    /* Split across processes (il_distrib): this process's tiles are
-     * rank, rank + size, ...; a tile's sums do not depend on who renders it,
-     * so the processes' films add up to the single-process film. */
-    bool split = il_distrib_on(desc->distrib);
-    uint32_t tile0 = split ? (uint32_t)desc->distrib->rank : 0u;
-    uint32_t step = split ? (uint32_t)desc->distrib->size : 1u;
-    uint32_t mine = tiles > tile0 ? (tiles - tile0 + step - 1) / step : 0u;
     uint32_t per_pass = pixels ? (uint32_t)(IL_PASS_SAMPLES / pixels) : 1u;
     per_pass = per_pass < 1 ? 1 : (per_pass > IL_PASS_MAX_SPP ? IL_PASS_MAX_SPP : per_pass);
 
@@ -124,56 +156,61 @@ il_status il_camera_pass_tiles(const il_scene *scene, il_film *film, const il_re
             return il_fail(err, IL_ERR_MEMORY, "render: out of memory (%zu bytes per thread)",
                            scratch_bytes);
     }
+    tile_run run = {&ctx, tile_fn, method, threads, tiles_x, scratch, stride};
 
     il_film_clear(film);
     double t0 = omp_get_wtime(), seconds = 0.0;
     uint64_t rays = 0, bad = 0;
     uint32_t done = 0;
-    while (done < spp) {
-        uint32_t count = spp - done < per_pass ? spp - done : per_pass;
-        uint64_t pass_rays = 0, pass_bad = 0;
-#pragma omp parallel for schedule(dynamic) num_threads(threads) reduction(+ : pass_rays, pass_bad)
-        for (uint32_t k = 0; k < mine; k++) {
-            uint32_t t = tile0 + k * step;
-            uint32_t x0 = (t % tiles_x) * IL_TILE, y0 = (t / tiles_x) * IL_TILE;
-            il_camera_tile tile = {
-                .x0 = x0,
-                .y0 = y0,
-                .x1 = x0 + IL_TILE < ctx.width ? x0 + IL_TILE : ctx.width,
-                .y1 = y0 + IL_TILE < ctx.height ? y0 + IL_TILE : ctx.height,
-                .first = done,
-                .count = count,
-                .scratch = scratch ? scratch + (size_t)omp_get_thread_num() * stride : NULL,
-            };
-            tile_fn(method, &ctx, &tile);
-            pass_rays += tile.rays;
-            pass_bad += tile.nonfinite;
+    const il_distrib *d = desc->distrib;
+    if (il_distrib_on(d) && d->claim) {
+        /* Split across processes, tiles on demand: each claim takes the
+         * next few tiles of the shared counter, rendered with all their
+         * samples (a pixel's sums are formed in the same order as in
+         * passes: increasing sample index), so the processes' films add up
+         * to one process's whatever tiles each got. */
+        uint32_t chunk = 2u * (uint32_t)threads;
+        for (;;) {
+            uint64_t first = d->claim(d->user, chunk);
+            if (first >= tiles)
+                break;
+            uint32_t n = tiles - first < chunk ? (uint32_t)(tiles - first) : chunk;
+            run_tiles(&run, (uint32_t)first, 1, n, 0, spp, &rays, &bad);
         }
-        done += count;
-        rays += pass_rays;
-        bad += pass_bad;
-        seconds = omp_get_wtime() - t0;
-        if (desc->progress && !split) {
-            il_render_progress p = {
-                .passes_done = done,
-                .passes_total = spp == UINT32_MAX ? 0 : spp,
-                .seconds = seconds,
-                .time_limit = desc->time_limit,
-                .rays = rays,
-                .film = film,
-            };
-            /* Stopping early is not an error: the film holds `done` complete
-             * samples per pixel and the result says so. */
-            if (!desc->progress(&p, desc->progress_user))
+        done = spp;
+    } else {
+        /* One process, or split statically: tiles rank, rank + size, ...
+         * (a tile's sums do not depend on who renders it). */
+        bool split = il_distrib_on(d);
+        uint32_t tile0 = split ? (uint32_t)d->rank : 0u, step = split ? (uint32_t)d->size : 1u;
+        uint32_t mine = tiles > tile0 ? (tiles - tile0 + step - 1) / step : 0u;
+        while (done < spp) {
+            uint32_t count = spp - done < per_pass ? spp - done : per_pass;
+            run_tiles(&run, tile0, step, mine, done, count, &rays, &bad);
+            done += count;
+            seconds = omp_get_wtime() - t0;
+            if (desc->progress && !split) {
+                il_render_progress p = {
+                    .passes_done = done,
+                    .passes_total = spp == UINT32_MAX ? 0 : spp,
+                    .seconds = seconds,
+                    .time_limit = desc->time_limit,
+                    .rays = rays,
+                    .film = film,
+                };
+                /* Stopping early is not an error: the film holds `done`
+                 * complete samples per pixel and the result says so. */
+                if (!desc->progress(&p, desc->progress_user))
+                    break;
+            }
+            if (timed && seconds >= desc->time_limit)
                 break;
         }
-        if (timed && seconds >= desc->time_limit)
-            break;
     }
     out->spp = done;
     out->rays = rays;
     out->nonfinite_samples = bad;
-    out->seconds = seconds;
+    out->seconds = omp_get_wtime() - t0;
     free(scratch);
     return IL_OK;
 }

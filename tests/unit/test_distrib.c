@@ -7,6 +7,7 @@
  * hierarchical radiosity, IBL, Linespace and reflective shadow maps; a
  * malformed distrib and a failing exchange are errors, not crashes. */
 #include <pthread.h>
+#include <stdatomic.h>
 #include <string.h>
 
 #include "check.h"
@@ -21,6 +22,7 @@ typedef struct exchange {
     int size;
     const void *data[MAX_RANKS];
     size_t bytes[MAX_RANKS];
+    _Atomic uint64_t tiles;        /* il_distrib.claim's counter */
 } exchange;
 
 typedef struct rank_job {
@@ -59,6 +61,13 @@ static int allgather(void *user, const void *data, size_t bytes, void **out, siz
     return rc;
 }
 
+/* il_distrib.claim: tiles on demand from the shared counter. */
+static uint64_t claim(void *user, uint64_t count)
+{
+    rank_job *job = user;
+    return atomic_fetch_add(&job->x->tiles, count);
+}
+
 static int failing_allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
 {
     (void)user, (void)data, (void)bytes, (void)counts;
@@ -74,8 +83,10 @@ static void *run_rank(void *arg)
     return NULL;
 }
 
-/* The render of desc as `size` ranks against one process. */
-static void check_split(const il_scene *scene, il_render_desc desc, int size, const char *what)
+/* The render of desc as `size` ranks against one process; dynamic: tiles
+ * claimed on demand (il_distrib.claim) rather than dealt. */
+static uint64_t check_split_as(const il_scene *scene, il_render_desc desc, int size, bool dynamic,
+                               const char *what)
 {
     il_error err = {0};
     il_film *whole = NULL;
@@ -88,7 +99,8 @@ static void check_split(const il_scene *scene, il_render_desc desc, int size, co
     pthread_t threads[MAX_RANKS];
     for (int r = 0; r < size; r++) {
         jobs[r] = (rank_job){.x = &x, .scene = scene, .desc = desc};
-        jobs[r].distrib = (il_distrib){.rank = r, .size = size, .allgather = allgather, .user = &jobs[r]};
+        jobs[r].distrib = (il_distrib){.rank = r, .size = size, .allgather = allgather, .user = &jobs[r],
+                                       .claim = dynamic ? claim : NULL};
         CHECK_OK(il_film_create(W, H, &jobs[r].film, &err), &err);
         pthread_create(&threads[r], NULL, run_rank, &jobs[r]);
     }
@@ -110,11 +122,21 @@ static void check_split(const il_scene *scene, il_render_desc desc, int size, co
         CHECK_OK(jobs[r].status, &jobs[r].err);
         il_film_release(jobs[r].film);
     }
-    printf("%-28s %d ranks: %zu of %zu film values differ from one process (film sum %.6g)\n", what,
-           size, differ, n, total);
+    printf("%-28s %d ranks%s: %zu of %zu film values differ from one process (film sum %.6g)\n", what,
+           size, dynamic ? ", tiles on demand" : "", differ, n, total);
     CHECK(differ == 0);
     CHECK(total > 0.0);
     il_film_release(whole);
+    /* Claimed tiles: none (a method without the camera pass) or all 9. */
+    uint64_t claimed = atomic_load(&x.tiles);
+    CHECK(claimed == 0 || claimed >= 9);
+    return claimed;
+}
+
+static void check_split(const il_scene *scene, il_render_desc desc, int size, const char *what)
+{
+    check_split_as(scene, desc, size, false, what);
+    check_split_as(scene, desc, size, true, what);
 }
 
 int main(void)
@@ -163,7 +185,8 @@ int main(void)
 
     il_render_desc pt = base;
     pt.method = IL_METHOD_PT;
-    check_split(s, pt, 3, "path tracing");
+    check_split_as(s, pt, 3, false, "path tracing");
+    CHECK(check_split_as(s, pt, 3, true, "path tracing") >= 9);
 
     il_linespace_desc lsd = {.n = 2, .inject_rays = 20000};
     il_render_desc ls = base;

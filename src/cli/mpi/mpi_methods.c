@@ -20,6 +20,8 @@
 #include "core/error.h"
 
 typedef struct exchange_tally {
+    MPI_Win tiles;     /* rank 0's tile counter for il_distrib.claim */
+    uint64_t claims;   /* this rank's claims */
     uint64_t calls;
     uint64_t bytes;    /* bytes gathered: what every rank holds after the exchanges */
     uint64_t sent;     /* this rank's own part of them */
@@ -95,6 +97,21 @@ static int mpi_allgather(void *user, const void *data, size_t bytes, void **out,
     return 0;
 }
 
+/* il_distrib.claim: an atomic fetch-and-add on rank 0's counter (MPI
+ * one-sided, passive target: rank 0 does not have to answer; across nodes
+ * the MPI library may progress it only when rank 0 enters MPI, at its own
+ * next claim). */
+static uint64_t mpi_claim(void *user, uint64_t count)
+{
+    exchange_tally *t = user;
+    uint64_t prev = 0;
+    MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, t->tiles);
+    MPI_Fetch_and_op(&count, &prev, MPI_UINT64_T, 0, 0, MPI_SUM, t->tiles);
+    MPI_Win_unlock(0, t->tiles);
+    t->claims++;
+    return prev;
+}
+
 /* Sums the films on rank 0 (each pixel has one non-zero contributor: the
  * sum is exact). */
 static void reduce_film(il_film *film, int rank)
@@ -115,14 +132,17 @@ static void print_figures(const il_render_desc *desc, const il_render_stats *sta
                           const double *per_rank, const exchange_tally *t, double film_mb,
                           double t_reduce)
 {
-    /* per_rank: {render s, wait s, transfer s} per rank */
+    /* per_rank: {render s, wait s, transfer s, tile claims} per rank */
     double wait_max = 0.0, xfer_max = 0.0;
     fprintf(stderr, "illum: mpi: %d ranks, %s: render s per rank:", size, cli_method_name(desc->method));
     for (int r = 0; r < size; r++) {
-        fprintf(stderr, " %.3f", per_rank[3 * r]);
-        wait_max = per_rank[3 * r + 1] > wait_max ? per_rank[3 * r + 1] : wait_max;
-        xfer_max = per_rank[3 * r + 2] > xfer_max ? per_rank[3 * r + 2] : xfer_max;
+        fprintf(stderr, " %.3f", per_rank[4 * r]);
+        wait_max = per_rank[4 * r + 1] > wait_max ? per_rank[4 * r + 1] : wait_max;
+        xfer_max = per_rank[4 * r + 2] > xfer_max ? per_rank[4 * r + 2] : xfer_max;
     }
+    fprintf(stderr, "; camera tile claims per rank:");
+    for (int r = 0; r < size; r++)
+        fprintf(stderr, " %.0f", per_rank[4 * r + 3]);
     unsigned passes = desc->method == IL_METHOD_SPPM ? stats->spp
                       : desc->method == IL_METHOD_PHOTON ? 1u
                                                          : (unsigned)t->calls;
@@ -146,7 +166,17 @@ il_status cli_mpi_render_method(const il_scene *scene, il_film *film, const il_r
     /* Progress and the solve's step callback would let one rank stop
      * alone; the library does not call them when split. */
     exchange_tally tally = {0};
-    il_distrib dist = {.rank = rank, .size = size, .allgather = mpi_allgather, .user = &tally};
+    uint64_t *counter = NULL;
+    MPI_Win_allocate(rank == 0 ? (MPI_Aint)sizeof(uint64_t) : 0, (int)sizeof(uint64_t), MPI_INFO_NULL,
+                     MPI_COMM_WORLD, &counter, &tally.tiles);
+    if (rank == 0) {
+        MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, tally.tiles);
+        *counter = 0;
+        MPI_Win_unlock(0, tally.tiles);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    il_distrib dist = {.rank = rank, .size = size, .allgather = mpi_allgather, .user = &tally,
+                       .claim = mpi_claim};
     il_render_desc d = *desc;
     d.progress = NULL;
     d.progress_user = NULL;
@@ -162,6 +192,7 @@ il_status cli_mpi_render_method(const il_scene *scene, il_film *film, const il_r
         abort_job(rank, err->message);
     int in[2] = {(int)st, rank}, out[2];
     MPI_Allreduce(in, out, 1, MPI_2INT, MPI_MAXLOC, MPI_COMM_WORLD);
+    MPI_Win_free(&tally.tiles);
     if (out[0] != IL_OK)
     {
         if (st != IL_OK)
@@ -176,9 +207,9 @@ il_status cli_mpi_render_method(const il_scene *scene, il_film *film, const il_r
     uint64_t sum[4] = {0, 0, 0, 0};
     MPI_Reduce(mine, sum, 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
     double t_reduce = MPI_Wtime() - t1;
-    double me[3] = {t_render, tally.wait, tally.transfer};
+    double me[4] = {t_render, tally.wait, tally.transfer, (double)tally.claims};
     double *per_rank = rank == 0 ? malloc((size_t)size * sizeof me) : NULL;
-    MPI_Gather(me, 3, MPI_DOUBLE, per_rank, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    MPI_Gather(me, 4, MPI_DOUBLE, per_rank, 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (rank == 0) {
         stats->rays = sum[0];
         stats->nonfinite_samples = sum[1];

@@ -72,6 +72,10 @@ same_as_single linespace "2 3" -- "${base[@]}" --method linespace --linespace-n 
 same_as_single rsm "2" -- "${base[@]}" --method rsm --rsm-size 64 --rsm-samples 32 --rsm-shadow-test on
 env_map="${IL_SHARED_DIR:-$IL_SOURCE_DIR/../shared}/scenes/envmaps/polyhaven_venice_sunset_1k.hdr"
 same_as_single ibl "2 3" -- "${base[@]}" --method ibl --env "$env_map" --lights 32 --batch 8
+# Their tiles go on demand: every rank claims some.
+expect_exit 0 "rsm verbose" -- "${MPI[@]}" -np 2 "$ILLUM" render "${base[@]}" --method rsm --rsm-size 64 \
+    --rsm-samples 32 -o rv.pfm
+expect_stderr "camera tile claims per rank: [1-9][0-9]* [1-9]" "rsm verbose"
 expect_exit 0 "hr verbose" -- "${MPI[@]}" -np 2 "$ILLUM" render "${base[@]}" --method hr -o hv.pfm
 expect_stderr "mpi: 2 ranks, hr: .* exchanges, .* MB gathered" "hr verbose"
 
