@@ -70,8 +70,10 @@ static il_status take_rows(il_rad_rows *rows, il_ff_cache *cache, const uint32_t
                                    "radiosity: out of memory for form-factor rows");
                 rows->copy_cap[k] = n;
             }
-            memcpy(dst->index, p + off, (size_t)n * sizeof *dst->index);
-            memcpy(dst->value, p + off + (size_t)n * 4u, (size_t)n * sizeof *dst->value);
+            if (n) { /* an empty row may have no arrays */
+                memcpy(dst->index, p + off, (size_t)n * sizeof *dst->index);
+                memcpy(dst->value, p + off + (size_t)n * 4u, (size_t)n * sizeof *dst->value);
+            }
             dst->count = n;
             rows->row[k] = dst;
             il_ff_cache_put(cache, patch_of[k], dst);
@@ -119,8 +121,10 @@ il_status il_rad_rows_fetch_split(il_rad_rows *rows, const il_ff *ff, il_ff_cach
             uint32_t head[2] = {need[j], r->count};
             memcpy(send + off, head, sizeof head);
             off += sizeof head;
-            memcpy(send + off, r->index, (size_t)r->count * 4u);
-            memcpy(send + off + (size_t)r->count * 4u, r->value, (size_t)r->count * 4u);
+            if (r->count) { /* an empty row may have no arrays */
+                memcpy(send + off, r->index, (size_t)r->count * 4u);
+                memcpy(send + off + (size_t)r->count * 4u, r->value, (size_t)r->count * 4u);
+            }
             off += (size_t)r->count * 8u;
         }
         st = il_distrib_allgather(d, send, bytes, &all, counts, err);
