@@ -6,27 +6,16 @@
  * final gather), SPPM, progressive radiosity (shooting and gathering),
  * hierarchical radiosity, IBL, Linespace and reflective shadow maps; a
  * malformed distrib and a failing exchange are errors, not crashes. */
-#include <pthread.h>
-#include <stdatomic.h>
 #include <string.h>
 
 #include "check.h"
 #include "illum/illum.h"
+#include "thread_ranks.h"
 
 #define W 48
 #define H 48
-#define MAX_RANKS 3
-
-typedef struct exchange {
-    pthread_barrier_t barrier;
-    int size;
-    const void *data[MAX_RANKS];
-    size_t bytes[MAX_RANKS];
-    _Atomic uint64_t tiles;        /* il_distrib.claim's counter */
-} exchange;
-
 typedef struct rank_job {
-    exchange *x;
+    thread_rank me;
     il_distrib distrib;
     const il_scene *scene;
     il_render_desc desc;
@@ -34,46 +23,6 @@ typedef struct rank_job {
     il_status status;
     il_error err;
 } rank_job;
-
-/* il_distrib.allgather: every rank's bytes in rank order. */
-static int allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
-{
-    rank_job *job = user;
-    exchange *x = job->x;
-    x->data[job->distrib.rank] = data;
-    x->bytes[job->distrib.rank] = bytes;
-    pthread_barrier_wait(&x->barrier);
-    size_t total = 0;
-    for (int r = 0; r < x->size; r++)
-        total += x->bytes[r];
-    int rc = 0;
-    *out = total ? malloc(total) : NULL;
-    if (total && !*out)
-        rc = 1;
-    for (int r = 0, at = 0; r < x->size; r++) {
-        counts[r] = x->bytes[r];
-        if (*out && x->bytes[r])
-            memcpy((char *)*out + at, x->data[r], x->bytes[r]);
-        at += (int)x->bytes[r];
-    }
-    /* Nobody may change its data before everyone has copied it. */
-    pthread_barrier_wait(&x->barrier);
-    return rc;
-}
-
-/* il_distrib.claim: tiles on demand from the shared counter. */
-static uint64_t claim(void *user, uint64_t count)
-{
-    rank_job *job = user;
-    return atomic_fetch_add(&job->x->tiles, count);
-}
-
-static int failing_allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
-{
-    (void)user, (void)data, (void)bytes, (void)counts;
-    *out = NULL;
-    return 1;
-}
 
 static void *run_rank(void *arg)
 {
@@ -93,20 +42,19 @@ static uint64_t check_split_as(const il_scene *scene, il_render_desc desc, int s
     CHECK_OK(il_film_create(W, H, &whole, &err), &err);
     CHECK_OK(il_render(scene, whole, &desc, NULL, &err), &err);
 
-    exchange x = {.size = size};
-    pthread_barrier_init(&x.barrier, NULL, (unsigned)size);
-    rank_job jobs[MAX_RANKS];
-    pthread_t threads[MAX_RANKS];
+    thread_exchange x;
+    thread_exchange_init(&x, size, false);
+    rank_job jobs[THREAD_RANKS_MAX];
+    pthread_t threads[THREAD_RANKS_MAX];
     for (int r = 0; r < size; r++) {
-        jobs[r] = (rank_job){.x = &x, .scene = scene, .desc = desc};
-        jobs[r].distrib = (il_distrib){.rank = r, .size = size, .allgather = allgather, .user = &jobs[r],
-                                       .claim = dynamic ? claim : NULL};
+        jobs[r] = (rank_job){.scene = scene, .desc = desc};
+        jobs[r].distrib = thread_distrib(&jobs[r].me, &x, r, dynamic);
         CHECK_OK(il_film_create(W, H, &jobs[r].film, &err), &err);
         pthread_create(&threads[r], NULL, run_rank, &jobs[r]);
     }
     for (int r = 0; r < size; r++)
         pthread_join(threads[r], NULL);
-    pthread_barrier_destroy(&x.barrier);
+    thread_exchange_destroy(&x);
 
     size_t n = 4 * (size_t)W * H, differ = 0;
     const double *a = il_film_data(whole);
@@ -222,7 +170,7 @@ int main(void)
     /* Malformed or failing: errors. */
     il_film *film = NULL;
     CHECK_OK(il_film_create(W, H, &film, &err), &err);
-    il_distrib bad = {.rank = 2, .size = 2, .allgather = allgather};
+    il_distrib bad = {.rank = 2, .size = 2, .allgather = thread_allgather};
     photon.photon = &pd;
     photon.distrib = &bad;
     CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
@@ -230,12 +178,12 @@ int main(void)
     il_distrib none = {.rank = 0, .size = 2};
     photon.distrib = &none;
     CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
-    il_distrib timed = {.rank = 0, .size = 2, .allgather = allgather};
+    il_distrib timed = {.rank = 0, .size = 2, .allgather = thread_allgather};
     photon.distrib = &timed;
     photon.time_limit = 1.0;
     CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_INVALID);
     photon.time_limit = 0.0;
-    il_distrib broken = {.rank = 0, .size = 2, .allgather = failing_allgather};
+    il_distrib broken = {.rank = 0, .size = 2, .allgather = thread_failing_allgather};
     photon.distrib = &broken;
     CHECK(il_render(s, film, &photon, NULL, &err) == IL_ERR_RUNTIME);
     printf("failing exchange: %s\n", err.message);

@@ -5,26 +5,16 @@
  * per-vertex radiance bit for bit, the same element, link and visibility-ray
  * counts, also when the ranks run different thread counts; an exchange that
  * fails or loses a rank's links is an error on every rank, not a crash. */
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "illum/illum.h"
 #include "methods/hr/hr.h"
-
-#define MAX_RANKS 3
-
-typedef struct exchange {
-    pthread_barrier_t barrier;
-    int size;
-    bool drop_last;  /* lose the last rank's bytes (a broken exchange) */
-    const void *data[MAX_RANKS];
-    size_t bytes[MAX_RANKS];
-} exchange;
+#include "thread_ranks.h"
 
 typedef struct rank_job {
-    exchange *x;
+    thread_rank me;
     il_distrib distrib;
     const il_scene *scene;
     il_render_desc desc;
@@ -34,41 +24,6 @@ typedef struct rank_job {
     il_status status;
     il_error err;
 } rank_job;
-
-/* il_distrib.allgather: every rank's bytes in rank order. */
-static int allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
-{
-    rank_job *job = user;
-    exchange *x = job->x;
-    x->data[job->distrib.rank] = data;
-    x->bytes[job->distrib.rank] = bytes;
-    pthread_barrier_wait(&x->barrier);
-    int n = x->drop_last ? x->size - 1 : x->size;
-    size_t total = 0;
-    for (int r = 0; r < n; r++)
-        total += x->bytes[r];
-    int rc = 0;
-    *out = total ? malloc(total) : NULL;
-    if (total && !*out)
-        rc = 1;
-    size_t at = 0;
-    for (int r = 0; r < x->size; r++) {
-        counts[r] = r < n ? x->bytes[r] : 0;
-        if (*out && r < n && x->bytes[r])
-            memcpy((char *)*out + at, x->data[r], x->bytes[r]);
-        at += counts[r];
-    }
-    /* Nobody may change its data before everyone has copied it. */
-    pthread_barrier_wait(&x->barrier);
-    return rc;
-}
-
-static int failing_allgather(void *user, const void *data, size_t bytes, void **out, size_t *counts)
-{
-    (void)user, (void)data, (void)bytes, (void)counts;
-    *out = NULL;
-    return 1;
-}
 
 static void *run_rank(void *arg)
 {
@@ -84,19 +39,18 @@ static void *run_rank(void *arg)
 static void run_split(const il_scene *scene, il_render_desc desc, int size, const int *threads,
                       bool drop_last, rank_job *jobs)
 {
-    exchange x = {.size = size, .drop_last = drop_last};
-    pthread_barrier_init(&x.barrier, NULL, (unsigned)size);
-    pthread_t tid[MAX_RANKS];
+    thread_exchange x;
+    thread_exchange_init(&x, size, drop_last);
+    pthread_t tid[THREAD_RANKS_MAX];
     for (int r = 0; r < size; r++) {
-        jobs[r] = (rank_job){.x = &x, .scene = scene, .desc = desc};
+        jobs[r] = (rank_job){.scene = scene, .desc = desc};
         jobs[r].desc.threads = threads[r];
-        jobs[r].distrib =
-            (il_distrib){.rank = r, .size = size, .allgather = allgather, .user = &jobs[r]};
+        jobs[r].distrib = thread_distrib(&jobs[r].me, &x, r, false);
         pthread_create(&tid[r], NULL, run_rank, &jobs[r]);
     }
     for (int r = 0; r < size; r++)
         pthread_join(tid[r], NULL);
-    pthread_barrier_destroy(&x.barrier);
+    thread_exchange_destroy(&x);
 }
 
 static void free_jobs(rank_job *jobs, int size)
@@ -117,7 +71,7 @@ static void check_split(const il_scene *scene, il_render_desc desc, int size, co
     CHECK_OK(il_hr_run(scene, &desc, &mesh, &rad, &one, &err), &err);
     if (!mesh)
         return;
-    rank_job jobs[MAX_RANKS];
+    rank_job jobs[THREAD_RANKS_MAX];
     run_split(scene, desc, size, threads, false, jobs);
     for (int r = 0; r < size; r++) {
         CHECK_OK(jobs[r].status, &jobs[r].err);
@@ -152,7 +106,7 @@ int main(void)
     il_hr_desc hd = {.bf_eps = 0.03f};
     il_render_desc desc = {.method = IL_METHOD_HR, .seed = 7, .threads = 1, .hr = &hd};
 
-    const int one[MAX_RANKS] = {1, 1, 1}, mixed[MAX_RANKS] = {2, 1, 3};
+    const int one[THREAD_RANKS_MAX] = {1, 1, 1}, mixed[THREAD_RANKS_MAX] = {2, 1, 3};
     check_split(s, desc, 2, one, "cornell");
     check_split(s, desc, 3, one, "cornell");
     check_split(s, desc, 3, mixed, "cornell, mixed threads");
@@ -162,7 +116,7 @@ int main(void)
     desc.hr = &hd;
 
     /* A broken exchange: the last rank's links lost, on every rank. */
-    rank_job jobs[MAX_RANKS];
+    rank_job jobs[THREAD_RANKS_MAX];
     run_split(s, desc, 2, one, true, jobs);
     for (int r = 0; r < 2; r++) {
         CHECK(jobs[r].status == IL_ERR_RUNTIME);
@@ -171,11 +125,11 @@ int main(void)
     printf("lost links: %s\n", jobs[0].err.message);
     free_jobs(jobs, 2);
     /* A failing exchange and a rank out of range. */
-    il_distrib broken = {.rank = 0, .size = 2, .allgather = failing_allgather};
+    il_distrib broken = {.rank = 0, .size = 2, .allgather = thread_failing_allgather};
     desc.distrib = &broken;
     CHECK(il_hr_run(s, &desc, NULL, NULL, NULL, &err) == IL_ERR_RUNTIME);
     printf("failing exchange: %s\n", err.message);
-    il_distrib bad = {.rank = 2, .size = 2, .allgather = allgather};
+    il_distrib bad = {.rank = 2, .size = 2, .allgather = thread_allgather};
     desc.distrib = &bad;
     CHECK(il_hr_run(s, &desc, NULL, NULL, NULL, &err) == IL_ERR_INVALID);
     printf("rank out of range: %s\n", err.message);
