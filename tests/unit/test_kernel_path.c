@@ -10,7 +10,6 @@
  * are refused with IL_ERR_INVALID. */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include "check.h"
 #include "kernel/kernel_scene.h"
 #include "scene/scene.h"
@@ -306,39 +305,6 @@ static void test_refused(void)
     check_refusal(&diffuse, false, true, false, false, "environment map");
 }
 
-/* Single-thread samples per second of ilk_path_sample on the atrium (a
- * figure for docs/cuda.md; no threshold). */
-static void atrium_rate(void)
-{
-    il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("atrium", NULL, &s, &err), &err);
-    if (!s)
-        return;
-    CHECK_OK(il_scene_commit(s, &err), &err);
-    il_kscene ks;
-    il_status built = il_kscene_build_pt(s, 64, 48, 8, 1, &ks, &err);
-    CHECK_OK(built, &err);
-    if (built == IL_OK) {
-        struct timespec t0, t1;
-        clock_gettime(CLOCK_MONOTONIC, &t0);
-        double sum = 0;
-        for (uint32_t y = 0; y < 48; y++)
-            for (uint32_t x = 0; x < 64; x++)
-                for (uint32_t i = 0; i < 4; i++) {
-                    ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i);
-                    sum += L.x + L.y + L.z;
-                }
-        clock_gettime(CLOCK_MONOTONIC, &t1);
-        double sec = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-        printf("atrium: %.0f kernel path samples/s on one CPU thread (64x48, 4 spp, max depth 8; mean %.4f)\n",
-               64 * 48 * 4 / sec, sum / (64 * 48 * 4));
-        CHECK(sum > 0.0);
-        il_kscene_free(&ks);
-    }
-    il_scene_release(s);
-}
-
 int main(void)
 {
     setup cornell = {48, 48, 256, 8, 0.03};
@@ -351,6 +317,5 @@ int main(void)
     compare_small(GLASS_AND_MIRROR, "glass + mirror + panel + sun + sky", (setup){32, 32, 256, 8, 0.03});
     compare("atrium", (setup){32, 24, 64, 8, 0.05});
     test_refused();
-    atrium_rate();
     return check_report();
 }
