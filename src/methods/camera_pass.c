@@ -6,8 +6,9 @@
  * pixel's samples in increasing index; passes run one after the other.  So
  * every pixel's sum is formed in the same order whatever the thread count,
  * and the film is bit-identical with 1 or N threads.  Split across processes
- * (desc->distrib) each renders every size-th tile, whole, in the same
- * passes: the films add up to one process's. */
+ * (desc->distrib) each renders the tiles it claims (or, without a claim
+ * hook, every size-th tile in the same passes): the films add up to one
+ * process's. */
 #include "methods/camera_pass.h"
 
 #include <omp.h>
