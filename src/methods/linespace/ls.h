@@ -184,18 +184,21 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
 il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
                                bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L);
 
-/* il_ls_read in two halves, for many lookups at once (the sampling pass's
- * wave): il_ls_probe finds the shaft and direction of (x, w) and starts
- * fetching its entry and candidate range from memory; il_ls_read_probe,
- * called later with the same x and w, finishes the read.  The lookup is
- * bound by cache misses on the Linespace's large arrays, which a wave's
- * probes overlap. */
+/* il_ls_read in three steps, each done for a whole wave of lookups
+ * before the next (the sampling pass): il_ls_probe_at finds the voxel,
+ * shaft and direction of (x, w) and starts fetching the shaft's bit word;
+ * il_ls_probe_slot finds its slot and starts fetching its entry and
+ * candidate range; il_ls_read_probe, called with the same x and w,
+ * finishes the read.  The lookup is bound by cache misses on the
+ * Linespace's large arrays, which a wave's probes overlap. */
 typedef struct il_ls_probe {
+    bool found;                  /* a voxel and shaft for the line */
+    uint32_t voxel, shaft, dir;
     int64_t slot;                /* -1: nothing to read */
-    uint32_t dir, voxel;
     float t_in;
 } il_ls_probe;
-void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, bool occlusion_test, il_ls_probe *pr);
+void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr);
+void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *pr);
 il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
                                      il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
                                      uint32_t self_prim, il_vec3 *L);

@@ -8,24 +8,34 @@
 #include "trace/trace.h"
 
 /* The Linespace holding p and the line's shaft and direction for light
- * travelling along d; -1 when there is none. */
-static int64_t find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *dir, float *t_in,
-                    float *t_out, uint32_t *voxel)
+ * travelling along d; false when there is none. */
+static bool locate(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *voxel, uint32_t *shaft,
+                   uint32_t *dir, float *t_in, float *t_out)
 {
     uint32_t c[3];
     if (!il_ls_cell_of(ls, p, c))
-        return -1;
+        return false;
     int32_t v = ls->cell[c[0] + (size_t)ls->res[0] * (c[1] + (size_t)ls->res[1] * c[2])];
     if (v < 0)
-        return -1;
+        return false;
     il_vec3 lo;
     il_ls_cell_box(ls, c, &lo);
     uint32_t fi, pi, fo, po;
     if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, t_in, t_out))
-        return -1;
-    uint32_t shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, dir);
+        return false;
+    *shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, dir);
     *voxel = (uint32_t)v;
-    return il_ls_slot(ls, (uint32_t)v, shaft);
+    return true;
+}
+
+/* locate, then the stored shaft's slot; -1 when there is none. */
+static int64_t find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *dir, float *t_in,
+                    float *t_out, uint32_t *voxel)
+{
+    uint32_t shaft;
+    if (!locate(ls, p, d, voxel, &shaft, dir, t_in, t_out))
+        return -1;
+    return il_ls_slot(ls, *voxel, shaft);
 }
 
 il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L)
@@ -107,14 +117,24 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
     return shaft_blocks(ls, scene, slot, voxel, org, w, eps, t_out - eps, self_mesh, self_prim);
 }
 
-void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, bool occlusion_test, il_ls_probe *pr)
+void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr)
 {
     /* One walk for both: the light's line through x (nudged towards w)
      * travelling along -w; where it enters the voxel is where the ray from
      * x along w leaves it, t_in behind x. */
     float eps = 1e-4f * v3_max_comp(ls->vsize);
     float t_out;
-    pr->slot = find(ls, v3_fma(x, w, eps), v3_neg(w), &pr->dir, &pr->t_in, &t_out, &pr->voxel);
+    pr->slot = -1;
+    pr->found = locate(ls, v3_fma(x, w, eps), v3_neg(w), &pr->voxel, &pr->shaft, &pr->dir, &pr->t_in, &t_out);
+    if (pr->found)
+        __builtin_prefetch(&ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u]);
+}
+
+void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *pr)
+{
+    if (!pr->found)
+        return;
+    pr->slot = il_ls_slot(ls, pr->voxel, pr->shaft);
     if (pr->slot < 0)
         return;
     __builtin_prefetch(&ls->entries[2u * (uint64_t)pr->slot + pr->dir]);
@@ -145,6 +165,7 @@ il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il
                                bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L)
 {
     il_ls_probe pr;
-    il_ls_probe_at(ls, x, w, occlusion_test, &pr);
+    il_ls_probe_at(ls, x, w, &pr);
+    il_ls_probe_slot(ls, occlusion_test, &pr);
     return il_ls_read_probe(ls, scene, &pr, x, w, occlusion_test, self_mesh, self_prim, L);
 }

@@ -301,13 +301,16 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             else if (next == LS_LOOKUP)
                 w->looking[num_looking++] = j;
         }
-        /* The lookups in two sweeps: the shafts found and their entries
-         * fetched, then read, so that the cache misses overlap. */
+        /* The lookups in three sweeps (shafts located, slots found, read),
+         * each starting the next one's memory fetches, so that the cache
+         * misses of the wave's lookups overlap. */
         bool occlusion_test = m->set.occlusion_test;
         for (uint32_t k = 0; k < num_looking; k++) {
             const ls_path *p = &w->path[w->looking[k]];
-            il_ls_probe_at(m->ls, p->x, p->wi, occlusion_test, &w->probe[k]);
+            il_ls_probe_at(m->ls, p->x, p->wi, &w->probe[k]);
         }
+        for (uint32_t k = 0; k < num_looking; k++)
+            il_ls_probe_slot(m->ls, occlusion_test, &w->probe[k]);
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
             ls_path *p = &w->path[j];
