@@ -148,13 +148,7 @@ static il_status build_map(const il_cuda_scene *d, uint32_t num_emitted, float r
                 (st = il_cuda_check(cudaMemcpy(&count, m->count, sizeof count, cudaMemcpyDeviceToHost),
                                     "the photon kernels", err)) == IL_OK) {
                 m->num_slots = n;
-                m->grid.photons = m->photons;
-                m->grid.count = count;
-                m->grid.cell_start = m->cell_start;
-                m->grid.cell_end = m->cell_end;
-                m->grid.hash_mask = mask;
-                m->grid.cell_size = radius;
-                m->grid.inv_cell = inv_cell;
+                m->grid = ilk_grid_make(m->photons, count, m->cell_start, m->cell_end, mask, radius);
                 if (stats) {
                     float ms_trace = 0.0f, ms_build = 0.0f;
                     cudaEventElapsedTime(&ms_trace, e0, e1);

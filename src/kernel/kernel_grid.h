@@ -35,6 +35,21 @@ typedef struct ilk_grid {
     float cell_size, inv_cell;
 } ilk_grid;
 
+/* The grid over count sorted photons, cells of side cell_size. */
+IL_DEVICE_INLINE ilk_grid ilk_grid_make(const ilk_photon *photons, uint32_t count, const uint32_t *cell_start,
+                                        const uint32_t *cell_end, uint32_t hash_mask, float cell_size)
+{
+    ilk_grid g;
+    g.photons = photons;
+    g.count = count;
+    g.cell_start = cell_start;
+    g.cell_end = cell_end;
+    g.hash_mask = hash_mask;
+    g.cell_size = cell_size;
+    g.inv_cell = 1.0f / cell_size;
+    return g;
+}
+
 typedef struct ilk_cell { int x, y, z; } ilk_cell;
 
 IL_DEVICE_INLINE ilk_cell ilk_grid_cell(float inv_cell, ilk_vec3 p)

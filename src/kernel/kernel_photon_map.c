@@ -72,13 +72,7 @@ il_status il_kphoton_map_build(const il_kscene *ks, uint32_t num_emitted, float 
     free(slots);
     free(kv);
     out->num_slots = n;
-    out->grid.photons = out->photons;
-    out->grid.count = stored;
-    out->grid.cell_start = out->cell_start;
-    out->grid.cell_end = out->cell_end;
-    out->grid.hash_mask = mask;
-    out->grid.cell_size = radius;
-    out->grid.inv_cell = inv_cell;
+    out->grid = ilk_grid_make(out->photons, stored, out->cell_start, out->cell_end, mask, radius);
     return IL_OK;
 }
 
