@@ -1,12 +1,12 @@
-/* What every GPU test shares: the skip without a GPU, the Cornell box,
- * and the comparison of a GPU image with the same kernel run by gcc and
- * with the CPU path tracer. */
+/* What every GPU test shares: the skip without a GPU, scene loading
+ * (scene_build.h), and the comparison of a GPU image with the same kernel
+ * run by gcc and with the CPU path tracer. */
 #ifndef IL_TEST_CUDA_TEST_H
 #define IL_TEST_CUDA_TEST_H
 
 #include <math.h>
 #include <stdio.h>
-#include "check.h"
+#include "scene_build.h"
 #include "cuda/cuda_backend.h"
 #include "scene/scene.h"
 
@@ -24,18 +24,6 @@ static inline int cuda_test_require_gpu(void)
     }
     printf("GPU: %s, compute capability %d.%d\n", dev.name, dev.cc_major, dev.cc_minor);
     return 0;
-}
-
-/* The built-in Cornell box, committed; NULL (and a failed check) when it
- * does not load. */
-static inline il_scene *cuda_test_cornell(void)
-{
-    il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
-    if (s)
-        CHECK_OK(il_scene_commit(s, &err), &err);
-    return s;
 }
 
 /* Checks a w*h RGB GPU image against the same kernel on the CPU (means

@@ -24,7 +24,7 @@ int main(void)
     if (cuda_test_require_gpu() != 0)
         return 77;
     il_error err = {0};
-    il_scene *s = cuda_test_cornell();
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
     il_kscene ks;

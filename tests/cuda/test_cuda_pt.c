@@ -45,18 +45,15 @@ int main(void)
 {
     if (cuda_test_require_gpu() != 0)
         return 77;
-    il_scene *s = cuda_test_cornell();
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
     compare(s);
     il_scene_release(s);
 
     /* The Cornell box with the Stanford dragon (47,806 triangles). */
-    il_error err = {0};
-    s = NULL;
-    CHECK_OK(il_scene_load(IL_SOURCE_DIR "/bench/scenes/cornell-dragon.json", NULL, &s, &err), &err);
+    s = load_committed(IL_SOURCE_DIR "/bench/scenes/cornell-dragon.json");
     if (s) {
-        CHECK_OK(il_scene_commit(s, &err), &err);
         compare(s);
         il_scene_release(s);
     }

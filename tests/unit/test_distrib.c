@@ -8,7 +8,7 @@
  * malformed distrib and a failing exchange are errors, not crashes. */
 #include <string.h>
 
-#include "check.h"
+#include "scene_build.h"
 #include "illum/illum.h"
 #include "thread_ranks.h"
 
@@ -90,11 +90,9 @@ static void check_split(const il_scene *scene, il_render_desc desc, int size, co
 int main(void)
 {
     il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
-    CHECK_OK(il_scene_commit(s, &err), &err);
     il_render_desc base = {.spp = 2, .max_depth = 4, .seed = 7, .threads = 1};
 
     il_photon_desc pd = {.photons = 20000};

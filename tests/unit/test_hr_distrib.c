@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
+#include "scene_build.h"
 #include "illum/illum.h"
 #include "methods/hr/hr.h"
 #include "thread_ranks.h"
@@ -98,11 +98,9 @@ static void check_split(const il_scene *scene, il_render_desc desc, int size, co
 int main(void)
 {
     il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
-    CHECK_OK(il_scene_commit(s, &err), &err);
     il_hr_desc hd = {.bf_eps = 0.03f};
     il_render_desc desc = {.method = IL_METHOD_HR, .seed = 7, .threads = 1, .hr = &hd};
 

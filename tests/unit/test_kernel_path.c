@@ -10,7 +10,7 @@
  * are refused with IL_ERR_INVALID. */
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
+#include "scene_build.h"
 #include "kernel/kernel_scene.h"
 #include "scene/scene.h"
 
@@ -118,12 +118,9 @@ static void compare_scene(il_scene *s, const char *label, setup q)
 
 static void compare(const char *scene, setup q)
 {
-    il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load(scene, NULL, &s, &err), &err);
+    il_scene *s = load_committed(scene);
     if (!s)
         return;
-    CHECK_OK(il_scene_commit(s, &err), &err);
     compare_scene(s, strstr(scene, "dragon") ? "dragon" : scene, q);
     il_scene_release(s);
 }

@@ -9,7 +9,7 @@
  *  - bad input is refused. */
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
+#include "scene_build.h"
 #include "core/rng.h"
 #include "kernel/kernel_photon_gather.h"
 #include "kernel/kernel_photon_map.h"
@@ -18,16 +18,6 @@
 #define W 48
 #define H 48
 #define B 8
-
-static il_scene *cornell(void)
-{
-    il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
-    if (s)
-        CHECK_OK(il_scene_commit(s, &err), &err);
-    return s;
-}
 
 /* Every photon carries Phi / N, Phi = sum pi A Le (per face) the lights'
  * power: the records at the photons' first hits (the box is open at the
@@ -218,7 +208,7 @@ static void test_refused(const il_kscene *ks)
 
 int main(void)
 {
-    il_scene *s = cornell();
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
     il_error err = {0};

@@ -11,7 +11,7 @@
  *  - bad input is refused. */
 #include <stdlib.h>
 #include <string.h>
-#include "check.h"
+#include "scene_build.h"
 #include "kernel/kernel_radiosity_scene.h"
 #include "methods/radiosity/rad.h"
 #include "scene/scene.h"
@@ -22,11 +22,9 @@
 int main(void)
 {
     il_error err = {0};
-    il_scene *s = NULL;
-    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    il_scene *s = load_committed("cornell");
     if (!s)
         return check_report();
-    CHECK_OK(il_scene_commit(s, &err), &err);
     il_radiosity_desc rdesc = {.subdivisions = 3, .form_factors = IL_FF_RAYCAST, .ray_samples = SAMPLES,
                                .solver = IL_SOLVER_JACOBI, .tolerance = 1e-4f};
     il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .seed = SEED, .radiosity = &rdesc};
