@@ -12,20 +12,13 @@
  * PCG: il_pcg32 seeded from hash(seed, pixel, index), one number per draw. */
 #include "core/sampler.h"
 
+/* The scalar bit tricks are the GPU kernel's (one source, kernel_sobol.h). */
+#include "kernel/kernel_sobol.h"
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define IL_SAMPLER_AVX2 1
 #endif
-
-/* Reverses the 32 bits of x (a byte swap, then nibbles, pairs, bits). */
-static inline uint32_t reverse_bits(uint32_t x)
-{
-    x = __builtin_bswap32(x);
-    x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
-    x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
-    x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
-    return x;
-}
 
 /* Reverses the bits of both 32-bit halves of x at once (the same steps on
  * 64 bits; the byte swap also swaps the halves, which the caller undoes by
@@ -39,41 +32,11 @@ static inline uint64_t reverse_bits_pair_swapped(uint64_t x)
     return x;
 }
 
-/* Second Sobol dimension, bit-reversed.  With the polynomial x + 1 (degree 1,
- * m_1 = 1) the direction numbers follow v_k = v_{k-1} ^ (v_{k-1} >> 1),
- * v_0 = 2^31 (Bratley & Fox 1988; Joe & Kuo 2008): the rows of Pascal's
- * triangle mod 2, so output bit j (counted from the top) is the XOR of the
- * index bits k with C(k, j) odd, i.e. (Lucas' theorem) with j a bit-subset of
- * k.  That "superset XOR" transform takes five shift-and-mask steps, one per
- * bit of j, and yields the result bit-reversed (bit j at position j). */
-static inline uint32_t sobol_dim1_reversed(uint32_t index)
-{
-    index ^= (index >> 1) & 0x55555555u;
-    index ^= (index >> 2) & 0x33333333u;
-    index ^= (index >> 4) & 0x0f0f0f0fu;
-    index ^= (index >> 8) & 0x00ff00ffu;
-    index ^= (index >> 16) & 0x0000ffffu;
-    return index;
-}
-
-/* Burley 2020, section 3 (improved Laine-Karras permutation): a hash in which
- * every output bit depends only on the same and lower input bits, so applied
- * to a bit-reversed value it is a nested uniform Owen scramble. */
-static inline uint32_t laine_karras(uint32_t x, uint32_t seed)
-{
-    x += seed;
-    x ^= x * 0x6c50b47cu;
-    x ^= x * 0xb82f1e52u;
-    x ^= x * 0xc7afe638u;
-    x ^= x * 0x8d22f6e6u;
-    return x;
-}
-
 /* Nested uniform Owen scrambling of a value given bit-reversed (Burley 2020,
  * listing 2: reverse, permute, reverse back); the result is in normal order. */
 static inline uint32_t owen_scramble_reversed(uint32_t reversed, uint32_t seed)
 {
-    return reverse_bits(laine_karras(reversed, seed));
+    return ilk_reverse_bits(ilk_laine_karras(reversed, seed));
 }
 
 void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64_t pixel,
@@ -83,7 +46,7 @@ void il_sampler_start(il_sampler *s, il_sampler_type type, uint64_t seed, uint64
     s->seed = seed;
     s->pixel = pixel;
     s->index = sample_index;
-    s->index_reversed = reverse_bits(sample_index);
+    s->index_reversed = ilk_reverse_bits(sample_index);
     s->dim = 0;
     s->key = il_hash_combine(il_hash64(seed), pixel);
     /* The PCG stream is only seeded when it is used. */
@@ -114,7 +77,7 @@ static inline uint32_t shuffled_index(const il_sampler *s, pair_seeds k)
 }
 
 /* The pair of dimensions (dim, dim+1) of the scrambled, shuffled sequence.
- * Dimension 0 of Sobol is reverse_bits(i), so scrambling it needs no
+ * Dimension 0 of Sobol is ilk_reverse_bits(i), so scrambling it needs no
  * reversal at all. */
 static inline il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
 {
@@ -122,8 +85,8 @@ static inline il_vec2 sobol_pair(const il_sampler *s, uint32_t dim)
     uint32_t i = shuffled_index(s, k);
     /* owen_scramble_reversed for both members, the two bit reversals done
      * together: x in the low half goes to the high half and y vice versa. */
-    uint64_t h = (uint64_t)laine_karras(i, k.x) |
-                 (uint64_t)laine_karras(sobol_dim1_reversed(i), k.y) << 32;
+    uint64_t h = (uint64_t)ilk_laine_karras(i, k.x) |
+                 (uint64_t)ilk_laine_karras(ilk_sobol_dim1_reversed(i), k.y) << 32;
     uint64_t r = reverse_bits_pair_swapped(h);
     return v2(il_u32_to_float((uint32_t)(r >> 32)), il_u32_to_float((uint32_t)r));
 }
@@ -194,7 +157,7 @@ IL_AVX2 static inline __m256i lk8(__m256i x, __m256i seed)
     return x;
 }
 
-/* reverse_bits on each lane: the bytes swapped by a shuffle, then each
+/* ilk_reverse_bits on each lane: the bytes swapped by a shuffle, then each
  * byte's bits reversed by two 16-entry table look-ups (one per nibble). */
 IL_AVX2 static inline __m256i reverse8(__m256i x)
 {
@@ -305,6 +268,6 @@ void il_sampler_2d_gather(il_sampler *base, const uint32_t *idx, uint32_t n, uin
 
 il_vec2 il_sobol02(uint32_t index)
 {
-    return v2(il_u32_to_float(reverse_bits(index)),
-              il_u32_to_float(reverse_bits(sobol_dim1_reversed(index))));
+    return v2(il_u32_to_float(ilk_reverse_bits(index)),
+              il_u32_to_float(ilk_reverse_bits(ilk_sobol_dim1_reversed(index))));
 }

@@ -17,13 +17,19 @@ typedef struct ilk_sobol {
     uint32_t dim;              /* next dimension */
 } ilk_sobol;
 
+/* Reverses the 32 bits of x (on the CPU: a byte swap, then nibbles, pairs,
+ * bits). */
 IL_DEVICE_INLINE uint32_t ilk_reverse_bits(uint32_t x)
 {
 #if defined(__CUDA_ARCH__)
     return __brev(x);
 #else
+#if defined(__GNUC__)
+    x = __builtin_bswap32(x);
+#else
     x = ((x & 0x0000ffffu) << 16) | ((x & 0xffff0000u) >> 16);
     x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+#endif
     x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
     x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
     x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
@@ -48,8 +54,13 @@ IL_DEVICE_INLINE uint64_t ilk_hash_combine(uint64_t a, uint64_t b)
     return ilk_mix64(a ^ (b + 0x9e3779b97f4a7c15ULL + (a << 6) + (a >> 2)));
 }
 
-/* Sobol dimension 1 of a bit-reversed index, bit-reversed (the "superset
- * XOR" of the Pascal-triangle direction numbers; core/sampler.c). */
+/* Second Sobol dimension, bit-reversed.  With the polynomial x + 1 (degree 1,
+ * m_1 = 1) the direction numbers follow v_k = v_{k-1} ^ (v_{k-1} >> 1),
+ * v_0 = 2^31 (Bratley & Fox 1988; Joe & Kuo 2008): the rows of Pascal's
+ * triangle mod 2, so output bit j (counted from the top) is the XOR of the
+ * index bits k with C(k, j) odd, i.e. (Lucas' theorem) with j a bit-subset of
+ * k.  That "superset XOR" transform takes five shift-and-mask steps, one per
+ * bit of j, and yields the result bit-reversed (bit j at position j). */
 IL_DEVICE_INLINE uint32_t ilk_sobol_dim1_reversed(uint32_t index)
 {
     index ^= (index >> 1) & 0x55555555u;
@@ -60,7 +71,9 @@ IL_DEVICE_INLINE uint32_t ilk_sobol_dim1_reversed(uint32_t index)
     return index;
 }
 
-/* Burley 2020, section 3. */
+/* Burley 2020, section 3 (improved Laine-Karras permutation): a hash in which
+ * every output bit depends only on the same and lower input bits, so applied
+ * to a bit-reversed value it is a nested uniform Owen scramble. */
 IL_DEVICE_INLINE uint32_t ilk_laine_karras(uint32_t x, uint32_t seed)
 {
     x += seed;
