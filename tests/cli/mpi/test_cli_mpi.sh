@@ -2,14 +2,7 @@
 # mpirun -np 2 and -np 3 on localhost give the single-process film bit for bit,
 # and a failing rank ends the run with rank 0's message and no output.
 . "$(dirname "$0")/../lib.bash"
-: "${MPIEXEC:?}"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-# Under -DIL_SANITIZE=ON: Open MPI's runtime (and the plugins it unloads)
-# leaks at exit, which LeakSanitizer would report as ours; illum's own
-# allocations are leak-checked by every other test.
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
-MPI=("$MPIEXEC" --oversubscribe)
+. "$(dirname "$0")/mpi.bash"
 
 # Cornell box, sizes that are not multiples of the 16-pixel tile, both
 # samplers and filters; 1 thread per rank so the ranks share the cores.

@@ -5,11 +5,7 @@
 # the uninterrupted film bit for bit; a checkpoint of another render is
 # refused.  Also --time and --write-every under mpirun.
 . "$(dirname "$0")/../lib.bash"
-: "${MPIEXEC:?}"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" # see test_cli_mpi.sh
-MPI=("$MPIEXEC" --oversubscribe)
+. "$(dirname "$0")/mpi.bash"
 
 # 96x48: 18 tiles; 1 thread per rank: units of 2 tiles.
 args=(cornell --width 96 --height 48 --spp 8 --seed 5 --threads 1)

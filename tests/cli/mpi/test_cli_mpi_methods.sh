@@ -3,12 +3,7 @@
 # registered only with -DIL_MPI=ON:
 # -np 2 and -np 3 on localhost give the single-process film bit for bit.
 . "$(dirname "$0")/../lib.bash"
-: "${MPIEXEC:?}"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
-# Open MPI's runtime leaks at exit (see test_cli_mpi.sh).
-export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
-MPI=("$MPIEXEC" --oversubscribe)
+. "$(dirname "$0")/mpi.bash"
 
 # same_as_single NAME NPS -- RENDER ARGS...: the single-process film, then
 # one mpirun per rank count, each compared byte for byte (PFM: the floats).
