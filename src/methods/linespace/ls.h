@@ -180,12 +180,9 @@ il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, i
 bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
                     uint32_t self_mesh, uint32_t self_prim);
 /* il_ls_lookup at x and, when occlusion_test, il_ls_occluded from x, with
- * one walk (IL_LS_EMPTY first: an empty entry is not tested for occlusion). */
-il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
-                               bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L);
-
-/* il_ls_read in three steps, each done for a whole wave of lookups
- * before the next (the sampling pass): il_ls_probe_at finds the voxel,
+ * one walk (IL_LS_EMPTY first: an empty entry is not tested for occlusion),
+ * in three steps, each done for a whole wave of lookups before the next
+ * (the sampling pass): il_ls_probe_at finds the voxel,
  * shaft and direction of (x, w) and starts fetching the shaft's bit word;
  * il_ls_probe_slot finds its slot and starts fetching its entry and
  * candidate range; il_ls_read_probe, called with the same x and w,

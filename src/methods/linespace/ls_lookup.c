@@ -160,12 +160,3 @@ il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *sce
     *L = v3(e->rgb[0], e->rgb[1], e->rgb[2]);
     return IL_LS_FOUND;
 }
-
-il_ls_lookup_status il_ls_read(const il_linespace *ls, const il_scene *scene, il_vec3 x, il_vec3 w,
-                               bool occlusion_test, uint32_t self_mesh, uint32_t self_prim, il_vec3 *L)
-{
-    il_ls_probe pr;
-    il_ls_probe_at(ls, x, w, &pr);
-    il_ls_probe_slot(ls, occlusion_test, &pr);
-    return il_ls_read_probe(ls, scene, &pr, x, w, occlusion_test, self_mesh, self_prim, L);
-}
