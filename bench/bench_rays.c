@@ -7,8 +7,8 @@
  * times the same batch cast (a) by Embree directly (rtcIntersect1/rtcOccluded1
  * on a scene built here), (b) through il_trace_closest/occluded, (c) through
  * the stream calls, each with 1 and 2 threads; last it renders the scene with
- * the path tracer (max depth 8) and reports its rays/s and its share of
- * Embree's own rate.  It prints figures and never judges them. */
+ * the path tracer (max depth 8), best of three like the casters, and
+ * reports its rays/s and its share of Embree's own rate.  It prints figures and never judges them. */
 #include <embree3/rtcore.h>
 #include <omp.h>
 #include <stdio.h>
@@ -252,15 +252,21 @@ int main(int argc, char **argv)
     il_film_create(w, h, &film, &err);
     for (int threads = 1; threads <= 2; threads++) {
         il_render_desc rd = {.spp = spp, .max_depth = 8, .threads = threads};
-        il_render_stats st;
-        if (il_render(scene, film, &rd, &st, &err) != IL_OK) {
-            fprintf(stderr, "bench_rays: %s\n", err.message);
-            return 1;
+        double rate = 0.0, seconds = 0.0;
+        for (int r = 0; r < 3; r++) { /* best of three, as Embree's rate above */
+            il_render_stats st;
+            if (il_render(scene, film, &rd, &st, &err) != IL_OK) {
+                fprintf(stderr, "bench_rays: %s\n", err.message);
+                return 1;
+            }
+            if (st.rays / st.seconds > rate) {
+                rate = st.rays / st.seconds;
+                seconds = st.seconds / st.spp;
+            }
         }
-        double rate = st.rays / st.seconds;
         printf("%-28s %8d %14.2f   (%.0f%% of Embree alone; %.3f Msamples/s)\n",
                "path tracer (depth 8)", threads, rate * 1e-6, 100.0 * rate / embree_rate[threads],
-               (double)w * h * st.spp / st.seconds * 1e-6);
+               (double)w * h / seconds * 1e-6);
     }
     il_film_release(film);
     free(b.closest);

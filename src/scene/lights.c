@@ -209,7 +209,7 @@ il_status il_lights_build(il_scene *s, il_error *err)
 
 /* The light il_distrib1d_sample_discrete picks from the scene's selection
  * CDF for u (clamped into [0, 1) the same way). */
-static inline uint32_t select_light(const il_scene *s, float u)
+uint32_t il_light_select(const il_scene *s, float u)
 {
     if (!(u >= 0.0f))
         u = 0.0f;
@@ -262,7 +262,7 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
     memset(out, 0, sizeof *out);
     if (s->num_lights == 0)
         return false;
-    uint32_t li = select_light(s, u_select);
+    uint32_t li = il_light_select(s, u_select);
     const il_light *l = &s->lights[li];
     float pmf = s->light_pmf[li];
     if (!(pmf > 0.0f))

@@ -24,6 +24,9 @@ typedef struct il_light_sample {
 il_status il_lights_build(il_scene *scene, il_error *err);
 void il_lights_free(il_scene *scene);
 
+/* The light il_light_sample_at picks with u_select (scene->num_lights > 0):
+ * by power, through the selection CDF. */
+uint32_t il_light_select(const il_scene *scene, float u_select);
 /* Samples a light seen from point p: u_select picks the light, u a point on it. */
 bool il_light_sample_at(const il_scene *scene, il_vec3 p, float u_select, il_vec2 u,
                         il_light_sample *out);

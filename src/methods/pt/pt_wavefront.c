@@ -56,7 +56,9 @@ typedef struct pt_wave {
  * with a Sobol sampler from the fourth bounce on a fourth whose first member
  * is the roulette number il_sampler_1d would give (a PCG sampler's 1D draw
  * takes one number, not a pair, so there it stays in il_pt_step_at).  Then
- * the cosine-weighted directions of the BSDF pairs, together. */
+ * the cosine-weighted directions of the BSDF pairs, together, and last the
+ * light samples and next rays of the Lambertian vertices, eight at a time
+ * (il_pt_diffuse_wave), which il_pt_step_at then only applies. */
 static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
 {
     uint32_t n[2] = {0, 0};
@@ -85,6 +87,8 @@ static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
     for (int r = 0; r < 2; r++)
         for (uint32_t k = 0; k < n[r]; k++)
             w->drawn[w->slot[r][k]].cos_dir = w->cos_dir[num_cos++];
+    for (int r = 0; r < 2; r++)
+        il_pt_diffuse_wave(pm->scene, w->st, w->list[r], w->slot[r], n[r], w->surf, w->drawn, pm->strategy);
 }
 
 /* Runs paths 0..n-1 of the wave to their ends. */

@@ -1,0 +1,358 @@
+/* The Lambertian vertices of a wave, eight at a time in AVX2 lanes: the
+ * next-event estimate and the BSDF sample of il_pt_step_at.
+ *
+ * The commonest vertex of an interior scene is a diffuse surface whose light
+ * sample lands on a triangle light.  Its estimate is a chain of dependent
+ * square roots, divisions and dot products (il_light_sample_at, il_bsdf_eval,
+ * the power heuristic, il_shadow_ray), and its next ray another (the shading
+ * frame, il_bsdf_sample_dir_cos, il_offset_origin), which one path at a time
+ * leave the CPU waiting on each result.  Here the vertices of a wave are
+ * gathered into lanes and each chain runs once for eight of them.
+ *
+ * Every lane does the operations of the scalar code in the same order, each
+ * correctly rounded as in scalar SSE (no FMA: compiled for AVX2 by a target
+ * attribute, never with -march), so a vertex gets the same bits as
+ * il_pt_step_at would give it; tests/validation/test_pt_wavefront.c holds
+ * the wavefront to the one-path-at-a-time estimator.  A vertex this code does
+ * not take (another material, another strategy, a CPU without AVX2) keeps
+ * both flags false, and one whose light is not a triangle of a mesh without
+ * authored normals keeps nee_done false: il_pt_step_at does that part. */
+#include <float.h>
+
+#include "methods/pt/pt.h"
+#include "scene/lights.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define IL_NEE_AVX2 1
+#endif
+
+#ifdef IL_NEE_AVX2
+#define IL_AVX2 __attribute__((target("avx2")))
+
+enum { LANES = 8 };
+
+/* One batch of lanes, structure of arrays.  The vertex: the shading point
+ * p, its geometric and shading normals, wo, the throughput, the diffuse
+ * albedo and the cosine-distributed direction drawn for it.  Its light
+ * sample (lanes with `nee` set): the triangle (vertices, normal, area,
+ * selection probability, radiance, sidedness) and the point sample u.
+ * Outputs: whether a shadow ray is cast, the ray and the radiance it
+ * carries; whether the path goes on, its throughput, pdf and next ray. */
+typedef struct lanes {
+    float p[3][LANES], ng[3][LANES], ns[3][LANES], wo[3][LANES], beta[3][LANES], kd[3][LANES];
+    float cos_dir[3][LANES];
+    float q0[3][LANES], q1[3][LANES], q2[3][LANES], lng[3][LANES], area[LANES], pmf[LANES];
+    float rad[3][LANES], two_sided[LANES], ux[LANES], uy[LANES];
+    float cast[LANES], org[3][LANES], dir[3][LANES], shadow_L[3][LANES];
+    float next_ok[LANES], next_beta[3][LANES], next_pdf[LANES], next_org[3][LANES], next_dir[3][LANES];
+} lanes;
+
+typedef struct v3x8 {
+    __m256 x, y, z;
+} v3x8;
+
+IL_AVX2 static inline v3x8 load3(float a[3][LANES])
+{
+    return (v3x8){_mm256_loadu_ps(a[0]), _mm256_loadu_ps(a[1]), _mm256_loadu_ps(a[2])};
+}
+IL_AVX2 static inline void store3(float a[3][LANES], v3x8 v)
+{
+    _mm256_storeu_ps(a[0], v.x);
+    _mm256_storeu_ps(a[1], v.y);
+    _mm256_storeu_ps(a[2], v.z);
+}
+IL_AVX2 static inline v3x8 add3(v3x8 a, v3x8 b)
+{
+    return (v3x8){_mm256_add_ps(a.x, b.x), _mm256_add_ps(a.y, b.y), _mm256_add_ps(a.z, b.z)};
+}
+IL_AVX2 static inline v3x8 sub3(v3x8 a, v3x8 b)
+{
+    return (v3x8){_mm256_sub_ps(a.x, b.x), _mm256_sub_ps(a.y, b.y), _mm256_sub_ps(a.z, b.z)};
+}
+IL_AVX2 static inline v3x8 mul3(v3x8 a, v3x8 b)
+{
+    return (v3x8){_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y), _mm256_mul_ps(a.z, b.z)};
+}
+IL_AVX2 static inline v3x8 scale3(v3x8 a, __m256 s)
+{
+    return (v3x8){_mm256_mul_ps(a.x, s), _mm256_mul_ps(a.y, s), _mm256_mul_ps(a.z, s)};
+}
+IL_AVX2 static inline v3x8 neg3(v3x8 a)
+{
+    const __m256 sign = _mm256_set1_ps(-0.0f);
+    return (v3x8){_mm256_xor_ps(a.x, sign), _mm256_xor_ps(a.y, sign), _mm256_xor_ps(a.z, sign)};
+}
+/* v3_dot's order: (x*x' + y*y') + z*z'. */
+IL_AVX2 static inline __m256 dot3(v3x8 a, v3x8 b)
+{
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)),
+                         _mm256_mul_ps(a.z, b.z));
+}
+/* mask ? a : b, per lane. */
+IL_AVX2 static inline __m256 sel(__m256 mask, __m256 a, __m256 b) { return _mm256_blendv_ps(b, a, mask); }
+IL_AVX2 static inline v3x8 sel3(__m256 mask, v3x8 a, v3x8 b)
+{
+    return (v3x8){sel(mask, a.x, b.x), sel(mask, a.y, b.y), sel(mask, a.z, b.z)};
+}
+IL_AVX2 static inline __m256 fabs8(__m256 a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a); }
+IL_AVX2 static inline __m256 gt0(__m256 a) { return _mm256_cmp_ps(a, _mm256_setzero_ps(), _CMP_GT_OQ); }
+IL_AVX2 static inline __m256 is_zero3(v3x8 a)
+{
+    const __m256 z = _mm256_setzero_ps();
+    return _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(a.x, z, _CMP_EQ_OQ), _mm256_cmp_ps(a.y, z, _CMP_EQ_OQ)),
+                         _mm256_cmp_ps(a.z, z, _CMP_EQ_OQ));
+}
+
+/* il_offset_origin: p moved off its surface along n, to dir's side, by the
+ * tracer's epsilon grown with the coordinates' magnitude. */
+IL_AVX2 static inline v3x8 offset_origin(__m256 epsilon, v3x8 p, v3x8 n, v3x8 dir)
+{
+    __m256 mag = _mm256_max_ps(fabs8(p.x), _mm256_max_ps(fabs8(p.y), fabs8(p.z)));
+    __m256 eps = _mm256_add_ps(epsilon, _mm256_mul_ps(_mm256_mul_ps(mag, _mm256_set1_ps(4.0f)),
+                                                      _mm256_set1_ps(FLT_EPSILON)));
+    __m256 front = _mm256_cmp_ps(dot3(n, dir), _mm256_setzero_ps(), _CMP_GE_OQ);
+    __m256 s = sel(front, eps, _mm256_xor_ps(eps, _mm256_set1_ps(-0.0f)));
+    return add3(p, scale3(n, s));
+}
+
+/* The estimate of il_pt_step_at's next-event block, for eight lanes. */
+IL_AVX2 static void nee8(lanes *l, float epsilon)
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 bsdf_eps = _mm256_set1_ps(1e-7f), inv_pi = _mm256_set1_ps(IL_INV_PI);
+    v3x8 p = load3(l->p), ng = load3(l->ng), ns = load3(l->ns), wo = load3(l->wo);
+
+    /* il_light_sample_at, area light: il_sample_triangle, then the point
+     * p0 b0 + p1 b1 + p2 b2 (il_scene_point). */
+    __m256 ux = _mm256_loadu_ps(l->ux), uy = _mm256_loadu_ps(l->uy);
+    __m256 hx = _mm256_mul_ps(_mm256_set1_ps(0.5f), ux), hy = _mm256_mul_ps(_mm256_set1_ps(0.5f), uy);
+    __m256 upper = _mm256_cmp_ps(ux, uy, _CMP_LT_OQ);
+    __m256 b1 = sel(upper, hx, _mm256_sub_ps(ux, hy));
+    __m256 b2 = sel(upper, _mm256_sub_ps(uy, hx), hy);
+    __m256 b0 = _mm256_sub_ps(_mm256_sub_ps(one, b1), b2);
+    v3x8 q = add3(add3(scale3(load3(l->q0), b0), scale3(load3(l->q1), b1)), scale3(load3(l->q2), b2));
+    v3x8 lng = load3(l->lng);
+    /* aim_at */
+    v3x8 d = sub3(q, p);
+    __m256 dist2 = dot3(d, d);
+    __m256 ok = gt0(dist2);
+    __m256 dist = _mm256_sqrt_ps(dist2);
+    v3x8 wi = scale3(d, _mm256_div_ps(one, dist));
+    /* Radiance towards p, and the pdf: selection times area_to_solid_angle. */
+    __m256 facing = _mm256_or_ps(_mm256_loadu_ps(l->two_sided), gt0(dot3(lng, neg3(wi))));
+    v3x8 rad = sel3(facing, load3(l->rad), (v3x8){zero, zero, zero});
+    __m256 c = fabs8(dot3(lng, wi));
+    __m256 area = _mm256_loadu_ps(l->area);
+    __m256 pdf_area = sel(_mm256_and_ps(gt0(c), gt0(area)), _mm256_div_ps(dist2, _mm256_mul_ps(area, c)), zero);
+    __m256 pdf = _mm256_mul_ps(_mm256_loadu_ps(l->pmf), pdf_area);
+    __m256 finite = _mm256_cmp_ps(fabs8(pdf), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
+    ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_and_ps(gt0(pdf), finite), _mm256_xor_ps(is_zero3(rad), _mm256_castsi256_ps(_mm256_set1_epi32(-1)))));
+
+    /* il_sides_agree(surf, wo, wi) */
+    __m256 wo_ng = dot3(wo, ng), wo_ns = dot3(wo, ns), wi_ns = dot3(wi, ns);
+    __m256 g = _mm256_mul_ps(wo_ng, dot3(wi, ng));
+    __m256 n = _mm256_mul_ps(wo_ns, wi_ns);
+    __m256 agree = _mm256_andnot_ps(_mm256_xor_ps(gt0(g), gt0(n)), _mm256_cmp_ps(g, zero, _CMP_NEQ_UQ));
+    ok = _mm256_and_ps(ok, agree);
+
+    /* il_bsdf_eval, Lambertian: same geometric side (g > 0), wo above the
+     * flipped shading frame, wi above it too; f = kd/pi, pdf = cos/pi. */
+    __m256 flip = _mm256_cmp_ps(wo_ns, zero, _CMP_LT_OQ);
+    __m256 wo_z = sel(flip, _mm256_xor_ps(wo_ns, _mm256_set1_ps(-0.0f)), wo_ns);
+    __m256 wi_z = sel(flip, _mm256_xor_ps(wi_ns, _mm256_set1_ps(-0.0f)), wi_ns);
+    __m256 lit = _mm256_and_ps(_mm256_and_ps(gt0(g), _mm256_cmp_ps(wo_z, bsdf_eps, _CMP_GT_OQ)),
+                               _mm256_cmp_ps(wi_z, bsdf_eps, _CMP_NLE_UQ));
+    v3x8 f = sel3(lit, scale3(load3(l->kd), inv_pi), (v3x8){zero, zero, zero});
+    __m256 bsdf_pdf = sel(_mm256_and_ps(lit, gt0(wi_z)), _mm256_mul_ps(wi_z, inv_pi), zero);
+    /* The power heuristic (Veach 1997, 9.2.4) for the light sample. */
+    __m256 f2 = _mm256_mul_ps(pdf, pdf), g2 = _mm256_mul_ps(bsdf_pdf, bsdf_pdf);
+    __m256 sum = _mm256_add_ps(f2, g2);
+    __m256 w = sel(gt0(sum), _mm256_div_ps(f2, sum), zero);
+    __m256 cos_i = fabs8(wi_ns);
+    __m256 not_zero_f = _mm256_xor_ps(is_zero3(f), _mm256_castsi256_ps(_mm256_set1_epi32(-1)));
+    ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_and_ps(gt0(w), gt0(cos_i)), not_zero_f));
+
+    /* il_shadow_ray(p, ng, q, lng), and what the ray carries. */
+    __m256 eps = _mm256_set1_ps(epsilon);
+    v3x8 o = offset_origin(eps, p, ng, d);
+    v3x8 target = sel3(is_zero3(lng), q, offset_origin(eps, q, lng, neg3(d)));
+    store3(l->org, o);
+    store3(l->dir, sub3(target, o));
+    __m256 k = _mm256_div_ps(_mm256_mul_ps(cos_i, w), pdf);
+    store3(l->shadow_L, scale3(mul3(load3(l->beta), mul3(f, rad)), k));
+    _mm256_storeu_ps(l->cast, ok);
+}
+
+/* il_pt_step_at's BSDF sample for eight Lambertian lanes: the shading frame
+ * (il_frame_from_normal), il_bsdf_sample_dir_cos with the drawn cosine
+ * direction, il_sides_agree, the throughput and the next ray. */
+IL_AVX2 static void next8(lanes *l, float epsilon)
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), minus = _mm256_set1_ps(-0.0f);
+    const __m256 bsdf_eps = _mm256_set1_ps(1e-7f), inv_pi = _mm256_set1_ps(IL_INV_PI);
+    v3x8 p = load3(l->p), ng = load3(l->ng), n = load3(l->ns), wo = load3(l->wo);
+    /* il_frame_from_normal (Duff et al. 2017) */
+    __m256 sign = _mm256_or_ps(_mm256_and_ps(n.z, minus), one);
+    __m256 a = _mm256_div_ps(_mm256_set1_ps(-1.0f), _mm256_add_ps(sign, n.z));
+    __m256 b = _mm256_mul_ps(_mm256_mul_ps(n.x, n.y), a);
+    v3x8 fs = {_mm256_add_ps(one, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(sign, n.x), n.x), a)),
+               _mm256_mul_ps(sign, b), _mm256_mul_ps(_mm256_xor_ps(sign, minus), n.x)};
+    v3x8 ft = {b, _mm256_add_ps(sign, _mm256_mul_ps(_mm256_mul_ps(n.y, n.y), a)), _mm256_xor_ps(n.y, minus)};
+    /* opaque_local: wo above the frame flipped to its side */
+    __m256 wo_z = dot3(wo, n);
+    __m256 flip = _mm256_cmp_ps(wo_z, zero, _CMP_LT_OQ);
+    wo_z = sel(flip, _mm256_xor_ps(wo_z, minus), wo_z);
+    __m256 ok = _mm256_cmp_ps(wo_z, bsdf_eps, _CMP_GT_OQ);
+    /* The cosine-distributed direction, its f and pdf (opaque_eval_local) */
+    v3x8 wl = load3(l->cos_dir);
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(wl.z, bsdf_eps, _CMP_NLE_UQ));
+    v3x8 f = scale3(load3(l->kd), inv_pi);
+    __m256 pdf = sel(gt0(wl.z), _mm256_mul_ps(wl.z, inv_pi), zero);
+    ok = _mm256_and_ps(ok, gt0(pdf));
+    __m256 z = sel(flip, _mm256_xor_ps(wl.z, minus), wl.z);
+    v3x8 wi = add3(add3(scale3(fs, wl.x), scale3(ft, wl.y)), scale3(n, z));
+    __m256 wo_ng = dot3(wo, ng), wi_ng = dot3(wi, ng);
+    __m256 g = _mm256_mul_ps(wo_ng, wi_ng);
+    ok = _mm256_and_ps(ok, gt0(g)); /* same_geometric_side */
+    v3x8 weight = scale3(f, _mm256_div_ps(wl.z, pdf));
+    ok = _mm256_andnot_ps(is_zero3(weight), ok);
+    /* il_sides_agree(surf, wo, wi): g as above */
+    __m256 sn = _mm256_mul_ps(dot3(wo, n), dot3(wi, n));
+    ok = _mm256_and_ps(ok, _mm256_andnot_ps(_mm256_xor_ps(gt0(g), gt0(sn)), _mm256_cmp_ps(g, zero, _CMP_NEQ_UQ)));
+    v3x8 beta = mul3(load3(l->beta), weight);
+    __m256 inf = _mm256_set1_ps(INFINITY);
+    __m256 finite = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(fabs8(beta.x), inf, _CMP_LT_OQ),
+                                                _mm256_cmp_ps(fabs8(beta.y), inf, _CMP_LT_OQ)),
+                                  _mm256_cmp_ps(fabs8(beta.z), inf, _CMP_LT_OQ));
+    ok = _mm256_and_ps(_mm256_andnot_ps(is_zero3(beta), ok), finite);
+    _mm256_storeu_ps(l->next_ok, ok);
+    store3(l->next_beta, beta);
+    _mm256_storeu_ps(l->next_pdf, pdf);
+    store3(l->next_org, offset_origin(_mm256_set1_ps(epsilon), p, ng, wi));
+    store3(l->next_dir, wi);
+}
+
+static void put3(float a[3][LANES], int k, il_vec3 v)
+{
+    a[0][k] = v.x;
+    a[1][k] = v.y;
+    a[2][k] = v.z;
+}
+
+/* Lane k's vertex inputs. */
+static void fill_vertex(const il_scene *s, const il_pt_state *st, const il_surface *surf,
+                        const il_pt_drawn *drawn, lanes *l, int k)
+{
+    put3(l->p, k, surf->p);
+    put3(l->ng, k, surf->ng);
+    put3(l->ns, k, surf->ns);
+    put3(l->wo, k, v3_neg(st->ray.dir));
+    put3(l->beta, k, st->beta);
+    put3(l->kd, k, v3_max(il_material_diffuse(s, surf->material, surf->uv), v3s(0.0f))); /* il_bsdf_init's */
+    put3(l->cos_dir, k, drawn->cos_dir);
+}
+
+/* Lane k's light sample inputs, or false when the sample does not land on a
+ * triangle light nee8 can take (then zeros, never read as a result). */
+static bool fill_light(const il_scene *s, const il_pt_drawn *drawn, lanes *l, int k)
+{
+    uint32_t li = s->num_lights > 0 ? il_light_select(s, drawn->u[0].x) : 0;
+    const il_light *light = s->num_lights > 0 ? &s->lights[li] : NULL;
+    const il_mesh *lm = light && light->kind == IL_LIGHTK_AREA ? &s->meshes[light->mesh] : NULL;
+    bool ok = lm && !lm->normals && lm->geom && s->light_pmf[li] > 0.0f;
+    const il_tri_geom *g = ok ? &lm->geom[light->prim] : NULL;
+    il_vec3 zero = v3s(0.0f);
+    put3(l->q0, k, ok ? g->p0 : zero);
+    put3(l->q1, k, ok ? g->p1 : zero);
+    put3(l->q2, k, ok ? g->p2 : zero);
+    put3(l->lng, k, ok ? g->ng : zero);
+    put3(l->rad, k, ok ? light->radiance : zero);
+    l->area[k] = ok ? light->area : 0.0f;
+    l->pmf[k] = ok ? s->light_pmf[li] : 0.0f;
+    l->two_sided[k] = ok && light->two_sided ? -1.0f : 0.0f; /* a mask: the sign bit */
+    l->ux[k] = drawn->u[1].x;
+    l->uy[k] = drawn->u[1].y;
+    return ok;
+}
+
+/* Lane k takes lane 0's inputs: the unused lanes of a short batch. */
+static void copy_lane0(lanes *l, int k)
+{
+    float(*v3s_[])[LANES] = {l->p, l->ng, l->ns, l->wo, l->beta, l->kd, l->cos_dir,
+                             l->q0, l->q1, l->q2, l->lng, l->rad};
+    for (size_t i = 0; i < sizeof v3s_ / sizeof v3s_[0]; i++)
+        for (int c = 0; c < 3; c++)
+            v3s_[i][c][k] = v3s_[i][c][0];
+    l->area[k] = l->area[0], l->pmf[k] = l->pmf[0], l->two_sided[k] = l->two_sided[0];
+    l->ux[k] = l->ux[0], l->uy[k] = l->uy[0];
+}
+
+static il_vec3 get3(const float a[3][LANES], int k) { return v3(a[0][k], a[1][k], a[2][k]); }
+
+/* The results of lane k into its path and its drawn record. */
+static void store_lane(const lanes *l, bool nee, il_pt_state *ps, il_pt_drawn *d, int k)
+{
+    d->nee_done = nee;
+    if (nee && l->cast[k] != 0.0f) {
+        ps->shadow = true;
+        ps->rays++;
+        ps->shadow_ray = (il_ray){.org = get3(l->org, k), .tmin = 0.0f, .dir = get3(l->dir, k),
+                                  .tmax = 1.0f - 1e-4f};
+        ps->shadow_L = get3(l->shadow_L, k);
+    }
+    d->next_done = true;
+    d->next_ok = l->next_ok[k] != 0.0f;
+    d->next_beta = get3(l->next_beta, k);
+    d->next_pdf = l->next_pdf[k];
+    d->next_ray = (il_ray){.org = get3(l->next_org, k), .tmin = 0.0f, .dir = get3(l->next_dir, k),
+                           .tmax = INFINITY};
+}
+
+IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, il_pt_state *st, const uint32_t *paths,
+                                      const uint32_t *slots, uint32_t n, const il_surface *surf,
+                                      il_pt_drawn *drawn)
+{
+    lanes l;
+    uint32_t lane_path[LANES], lane_slot[LANES];
+    bool lane_nee[LANES];
+    float epsilon = il_trace_epsilon(s->tracer);
+    int k = 0;
+    for (uint32_t i = 0; i <= n; i++) {
+        if (i < n) {
+            uint32_t j = paths[i], a = slots[i];
+            if (surf[a].material->type != IL_MATERIAL_DIFFUSE)
+                continue;
+            fill_vertex(s, &st[j], &surf[a], &drawn[a], &l, k);
+            lane_nee[k] = fill_light(s, &drawn[a], &l, k);
+            lane_path[k] = j;
+            lane_slot[k++] = a;
+            if (k < LANES)
+                continue;
+        }
+        if (k == 0)
+            break;
+        for (int e = k; e < LANES; e++)
+            copy_lane0(&l, e);
+        nee8(&l, epsilon);
+        next8(&l, epsilon);
+        for (int e = 0; e < k; e++)
+            store_lane(&l, lane_nee[e], &st[lane_path[e]], &drawn[lane_slot[e]], e);
+        k = 0;
+    }
+}
+#endif
+
+void il_pt_diffuse_wave(const il_scene *s, il_pt_state *st, const uint32_t *paths,
+                        const uint32_t *slots, uint32_t n, const il_surface *surf, il_pt_drawn *drawn,
+                        il_pt_strategy strategy)
+{
+    for (uint32_t i = 0; i < n; i++)
+        drawn[slots[i]].nee_done = drawn[slots[i]].next_done = false;
+#ifdef IL_NEE_AVX2
+    if (strategy == IL_PT_MIS && __builtin_cpu_supports("avx2"))
+        diffuse_wave_avx2(s, st, paths, slots, n, surf, drawn);
+#else
+    (void)s, (void)st, (void)paths, (void)surf, (void)strategy;
+#endif
+}
