@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include "core/sampler.h"
 #include "methods/camera_pass.h"
+#include "methods/diffuse_wave.h"
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
@@ -78,15 +79,8 @@ typedef struct il_pt_drawn {
     il_vec3 cos_dir;       /* il_sample_cosine_hemisphere(u[2]) */
     bool roulette;         /* u[3] holds the roulette number (a Sobol sampler's
                               next pair, whose first member il_sampler_1d gives) */
-    /* Made ahead by il_pt_diffuse_wave for a Lambertian vertex: */
-    bool nee_done;         /* the next-event estimate: st->shadow, shadow_ray and
-                              shadow_L are set */
-    bool next_done;        /* the BSDF sample, which the path continues with when
-                              next_ok: its throughput (before the roulette), pdf and ray */
-    bool next_ok;
-    il_vec3 next_beta;
-    float next_pdf;
-    il_ray next_ray;
+    il_diffuse_out diffuse; /* a Lambertian vertex's light sample and next ray,
+                              made with the wave's others (il_diffuse_wave) */
 } il_pt_drawn;
 
 void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir);
@@ -98,16 +92,6 @@ bool il_pt_step(const il_scene *scene, il_pt_state *st, const il_hit *hit, il_sa
 bool il_pt_step_at(const il_scene *scene, il_pt_state *st, const il_hit *hit,
                    const il_surface *surf, const il_pt_drawn *drawn, il_sampler *sampler,
                    uint32_t max_depth, il_pt_strategy strategy);
-/* For the vertices paths[i] (at surface surf[slots[i]], samples
- * drawn[slots[i]], about to be stepped) that are Lambertian, what
- * il_pt_step_at would compute, made for many vertices at once and bit for bit
- * the same (pt_diffuse_wave.c): the BSDF sample (drawn->next_done) and, when
- * the light sample picks a triangle light, the next-event estimate
- * (drawn->nee_done).  Both flags are false for the other vertices. */
-void il_pt_diffuse_wave(const il_scene *scene, il_pt_state *st, const uint32_t *paths,
-                    const uint32_t *slots, uint32_t n, const il_surface *surf, il_pt_drawn *drawn,
-                    il_pt_strategy strategy);
-
 static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
 {
     if (!occluded)

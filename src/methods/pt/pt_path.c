@@ -58,9 +58,7 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
                    il_pt_strategy strategy)
 {
     const il_tracer *tr = s->tracer;
-    bool nee_done = drawn && drawn->nee_done;
-    if (!nee_done)
-        st->shadow = false;
+    st->shadow = false;
     if (!hit) {
         il_vec3 le = il_environment_radiance(s, st->ray.dir);
         if (!v3_is_zero(le)) {
@@ -96,9 +94,10 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     if (depth >= max_depth)
         return false;
 
-    /* A vertex whose estimate and next ray a wave already made
-     * (il_pt_diffuse_wave) needs no BSDF of its own. */
-    bool next_done = drawn && drawn->next_done;
+    /* A vertex whose light sample and next ray a wave already made
+     * (il_diffuse_wave) needs no BSDF of its own. */
+    const il_diffuse_out *made = drawn ? &drawn->diffuse : NULL;
+    bool nee_done = made && made->nee_done, next_done = made && made->next_done;
     il_bsdf b;
     if (!(nee_done && next_done))
         il_bsdf_init(&b, s, &surf);
@@ -118,7 +117,14 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     /* Next-event estimation: a light sample and a shadow ray, which the
      * caller traces; its contribution is added when nothing blocks it. */
     il_light_sample ls;
-    if (!nee_done && !il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
+    if (nee_done) {
+        if (made->shadow) {
+            st->shadow_ray = made->shadow_ray;
+            st->shadow = true;
+            st->rays++;
+            st->shadow_L = made->shadow_L;
+        }
+    } else if (!il_bsdf_is_delta(&b) && il_light_sample_at(s, surf.p, u_select, u_light, &ls) &&
         il_sides_agree(&surf, wo, ls.wi)) {
         float w = 1.0f, bsdf_pdf = 0.0f;
         il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
@@ -140,27 +146,32 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
 
     /* BSDF sampling continues the path. */
     il_vec3 beta;
+    il_ray next;
+    float pdf;
+    bool delta = false;
     if (next_done) {
-        if (!drawn->next_ok)
+        if (!made->next_ok)
             return false;
-        beta = drawn->next_beta;
-        st->specular = false;
-        st->prev_pdf = drawn->next_pdf;
-        st->ray = drawn->next_ray;
+        beta = made->next_beta;
+        pdf = made->next_pdf;
+        next = made->next_ray;
     } else {
         il_bsdf_sample bs;
         if (!il_bsdf_sample_dir_cos(&b, wo, u_lobe, u_bsdf, drawn ? &drawn->cos_dir : NULL, &bs) ||
             !il_sides_agree(&surf, wo, bs.wi))
             return false;
         beta = v3_mul(st->beta, bs.weight);
-        if (v3_is_zero(beta) || !v3_is_finite(beta))
-            return false;
-        st->specular = bs.delta;
-        st->prev_pdf = bs.pdf;
-        st->ray = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f,
-                           .dir = bs.wi, .tmax = INFINITY};
+        pdf = bs.pdf;
+        delta = bs.delta;
+        next = (il_ray){.org = il_offset_origin(tr, surf.p, surf.ng, bs.wi), .tmin = 0.0f,
+                        .dir = bs.wi, .tmax = INFINITY};
     }
+    if (v3_is_zero(beta) || !v3_is_finite(beta))
+        return false;
+    st->specular = delta;
+    st->prev_pdf = pdf;
     st->prev_p = surf.p;
+    st->ray = next;
 
     /* Russian roulette after the third vertex (pbrt-v4 13.4.4): survive
      * with probability q = min(max component of the throughput, 0.95) and

@@ -49,6 +49,8 @@ typedef struct pt_wave {
     il_vec2 u[PT_WAVE * 4];        /* il_sampler_2d_gather's output */
     il_vec2 u_cos[PT_WAVE];        /* the BSDF pairs, warped together */
     il_vec3 cos_dir[PT_WAVE];
+    il_diffuse_in diffuse_in[PT_WAVE];      /* the drawing paths' vertices, for */
+    il_diffuse_out *diffuse_out[PT_WAVE];   /* il_diffuse_wave */
 } pt_wave;
 
 /* The samples of every path that draws them at this vertex (a hit below
@@ -58,7 +60,7 @@ typedef struct pt_wave {
  * takes one number, not a pair, so there it stays in il_pt_step_at).  Then
  * the cosine-weighted directions of the BSDF pairs, together, and last the
  * light samples and next rays of the Lambertian vertices, eight at a time
- * (il_pt_diffuse_wave), which il_pt_step_at then only applies. */
+ * (il_diffuse_wave), which il_pt_step_at then only applies. */
 static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
 {
     uint32_t n[2] = {0, 0};
@@ -87,8 +89,21 @@ static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
     for (int r = 0; r < 2; r++)
         for (uint32_t k = 0; k < n[r]; k++)
             w->drawn[w->slot[r][k]].cos_dir = w->cos_dir[num_cos++];
+    uint32_t num_drawn = 0;
     for (int r = 0; r < 2; r++)
-        il_pt_diffuse_wave(pm->scene, w->st, w->list[r], w->slot[r], n[r], w->surf, w->drawn, pm->strategy);
+        for (uint32_t k = 0; k < n[r]; k++) {
+            uint32_t j = w->list[r][k], a = w->slot[r][k];
+            il_pt_drawn *d = &w->drawn[a];
+            w->diffuse_in[num_drawn] = (il_diffuse_in){
+                .surf = &w->surf[a], .wo = v3_neg(w->st[j].ray.dir), .beta = w->st[j].beta,
+                .u_select = d->u[0].x, .u_light = d->u[1], .cos_dir = d->cos_dir};
+            w->diffuse_out[num_drawn++] = &d->diffuse;
+        }
+    if (pm->strategy == IL_PT_MIS)
+        il_diffuse_wave(pm->scene, w->diffuse_in, w->diffuse_out, num_drawn, IL_DIFFUSE_NEE_MIS);
+    else /* the other strategies are for tests: one vertex at a time */
+        for (uint32_t k = 0; k < num_drawn; k++)
+            w->diffuse_out[k]->nee_done = w->diffuse_out[k]->next_done = false;
 }
 
 /* Runs paths 0..n-1 of the wave to their ends. */

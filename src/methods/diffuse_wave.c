@@ -1,33 +1,33 @@
-/* The Lambertian vertices of a wave, eight at a time in AVX2 lanes: the
- * next-event estimate and the BSDF sample of il_pt_step_at.
+/* The Lambertian vertices of a wave, eight at a time in AVX2 lanes (see
+ * diffuse_wave.h).
  *
  * The commonest vertex of an interior scene is a diffuse surface whose light
- * sample lands on a triangle light.  Its estimate is a chain of dependent
- * square roots, divisions and dot products (il_light_sample_at, il_bsdf_eval,
- * the power heuristic, il_shadow_ray), and its next ray another (the shading
- * frame, il_bsdf_sample_dir_cos, il_offset_origin), which one path at a time
- * leave the CPU waiting on each result.  Here the vertices of a wave are
- * gathered into lanes and each chain runs once for eight of them.
+ * sample lands on a triangle light.  Its light sample is a chain of
+ * dependent square roots, divisions and dot products (il_light_sample_at,
+ * il_bsdf_eval, the power heuristic, il_shadow_ray), and its next ray
+ * another (the shading frame, il_bsdf_sample_dir_cos, il_offset_origin),
+ * which one path at a time leave the CPU waiting on each result.  Here the
+ * vertices are gathered into lanes and each chain runs once for eight.
  *
  * Every lane does the operations of the scalar code in the same order, each
  * correctly rounded as in scalar SSE (no FMA: compiled for AVX2 by a target
- * attribute, never with -march), so a vertex gets the same bits as
- * il_pt_step_at would give it; tests/validation/test_pt_wavefront.c holds
- * the wavefront to the one-path-at-a-time estimator.  A vertex this code does
- * not take (another material, another strategy, a CPU without AVX2) keeps
- * both flags false, and one whose light is not a triangle of a mesh without
- * authored normals keeps nee_done false: il_pt_step_at does that part. */
+ * attribute, never with -march), so a vertex gets the same bits as the
+ * scalar code would give it; tests/validation/test_pt_wavefront.c holds the
+ * path tracer's wavefront to its one-path-at-a-time estimator.  Comparisons
+ * keep C's treatment of NaN (ordered for <, >, <=, >=; unordered for !=). */
 #include <float.h>
 
-#include "methods/pt/pt.h"
+#include "methods/diffuse_wave.h"
+
+#include "scene/bsdf.h"
 #include "scene/lights.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
-#define IL_NEE_AVX2 1
+#define IL_DIFFUSE_AVX2 1
 #endif
 
-#ifdef IL_NEE_AVX2
+#ifdef IL_DIFFUSE_AVX2
 #define IL_AVX2 __attribute__((target("avx2")))
 
 enum { LANES = 8 };
@@ -116,8 +116,9 @@ IL_AVX2 static inline v3x8 offset_origin(__m256 epsilon, v3x8 p, v3x8 n, v3x8 di
     return add3(p, scale3(n, s));
 }
 
-/* The estimate of il_pt_step_at's next-event block, for eight lanes. */
-IL_AVX2 static void nee8(lanes *l, float epsilon)
+/* The light sample of eight lanes: the next-event block of il_pt_step_at
+ * (IL_DIFFUSE_NEE_MIS) or il_direct_light_sample (IL_DIFFUSE_NEE_PLAIN). */
+IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
 {
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
     const __m256 bsdf_eps = _mm256_set1_ps(1e-7f), inv_pi = _mm256_set1_ps(IL_INV_PI);
@@ -165,13 +166,18 @@ IL_AVX2 static void nee8(lanes *l, float epsilon)
                                _mm256_cmp_ps(wi_z, bsdf_eps, _CMP_NLE_UQ));
     v3x8 f = sel3(lit, scale3(load3(l->kd), inv_pi), (v3x8){zero, zero, zero});
     __m256 bsdf_pdf = sel(_mm256_and_ps(lit, gt0(wi_z)), _mm256_mul_ps(wi_z, inv_pi), zero);
-    /* The power heuristic (Veach 1997, 9.2.4) for the light sample. */
-    __m256 f2 = _mm256_mul_ps(pdf, pdf), g2 = _mm256_mul_ps(bsdf_pdf, bsdf_pdf);
-    __m256 sum = _mm256_add_ps(f2, g2);
-    __m256 w = sel(gt0(sum), _mm256_div_ps(f2, sum), zero);
     __m256 cos_i = fabs8(wi_ns);
-    __m256 not_zero_f = _mm256_xor_ps(is_zero3(f), _mm256_castsi256_ps(_mm256_set1_epi32(-1)));
-    ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_and_ps(gt0(w), gt0(cos_i)), not_zero_f));
+    ok = _mm256_andnot_ps(is_zero3(f), ok);
+    __m256 w = one;
+    if (mode == IL_DIFFUSE_NEE_MIS) {
+        /* The power heuristic (Veach 1997, 9.2.4) for the light sample. */
+        __m256 f2 = _mm256_mul_ps(pdf, pdf), g2 = _mm256_mul_ps(bsdf_pdf, bsdf_pdf);
+        __m256 sum = _mm256_add_ps(f2, g2);
+        w = sel(gt0(sum), _mm256_div_ps(f2, sum), zero);
+        ok = _mm256_and_ps(ok, _mm256_and_ps(gt0(w), gt0(cos_i)));
+    } else {
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(cos_i, zero, _CMP_NLE_UQ)); /* !(cos_i <= 0) */
+    }
 
     /* il_shadow_ray(p, ng, q, lng), and what the ray carries. */
     __m256 eps = _mm256_set1_ps(epsilon);
@@ -179,12 +185,14 @@ IL_AVX2 static void nee8(lanes *l, float epsilon)
     v3x8 target = sel3(is_zero3(lng), q, offset_origin(eps, q, lng, neg3(d)));
     store3(l->org, o);
     store3(l->dir, sub3(target, o));
-    __m256 k = _mm256_div_ps(_mm256_mul_ps(cos_i, w), pdf);
-    store3(l->shadow_L, scale3(mul3(load3(l->beta), mul3(f, rad)), k));
+    if (mode == IL_DIFFUSE_NEE_MIS)
+        store3(l->shadow_L, scale3(mul3(load3(l->beta), mul3(f, rad)), _mm256_div_ps(_mm256_mul_ps(cos_i, w), pdf)));
+    else
+        store3(l->shadow_L, scale3(mul3(f, rad), _mm256_div_ps(cos_i, pdf)));
     _mm256_storeu_ps(l->cast, ok);
 }
 
-/* il_pt_step_at's BSDF sample for eight Lambertian lanes: the shading frame
+/* The BSDF sample of eight Lambertian lanes: the shading frame
  * (il_frame_from_normal), il_bsdf_sample_dir_cos with the drawn cosine
  * direction, il_sides_agree, the throughput and the next ray. */
 IL_AVX2 static void next8(lanes *l, float epsilon)
@@ -220,14 +228,8 @@ IL_AVX2 static void next8(lanes *l, float epsilon)
     /* il_sides_agree(surf, wo, wi): g as above */
     __m256 sn = _mm256_mul_ps(dot3(wo, n), dot3(wi, n));
     ok = _mm256_and_ps(ok, _mm256_andnot_ps(_mm256_xor_ps(gt0(g), gt0(sn)), _mm256_cmp_ps(g, zero, _CMP_NEQ_UQ)));
-    v3x8 beta = mul3(load3(l->beta), weight);
-    __m256 inf = _mm256_set1_ps(INFINITY);
-    __m256 finite = _mm256_and_ps(_mm256_and_ps(_mm256_cmp_ps(fabs8(beta.x), inf, _CMP_LT_OQ),
-                                                _mm256_cmp_ps(fabs8(beta.y), inf, _CMP_LT_OQ)),
-                                  _mm256_cmp_ps(fabs8(beta.z), inf, _CMP_LT_OQ));
-    ok = _mm256_and_ps(_mm256_andnot_ps(is_zero3(beta), ok), finite);
     _mm256_storeu_ps(l->next_ok, ok);
-    store3(l->next_beta, beta);
+    store3(l->next_beta, mul3(load3(l->beta), weight));
     _mm256_storeu_ps(l->next_pdf, pdf);
     store3(l->next_org, offset_origin(_mm256_set1_ps(epsilon), p, ng, wi));
     store3(l->next_dir, wi);
@@ -241,23 +243,23 @@ static void put3(float a[3][LANES], int k, il_vec3 v)
 }
 
 /* Lane k's vertex inputs. */
-static void fill_vertex(const il_scene *s, const il_pt_state *st, const il_surface *surf,
-                        const il_pt_drawn *drawn, lanes *l, int k)
+static void fill_vertex(const il_scene *s, const il_diffuse_in *in, lanes *l, int k)
 {
+    const il_surface *surf = in->surf;
     put3(l->p, k, surf->p);
     put3(l->ng, k, surf->ng);
     put3(l->ns, k, surf->ns);
-    put3(l->wo, k, v3_neg(st->ray.dir));
-    put3(l->beta, k, st->beta);
+    put3(l->wo, k, in->wo);
+    put3(l->beta, k, in->beta);
     put3(l->kd, k, v3_max(il_material_diffuse(s, surf->material, surf->uv), v3s(0.0f))); /* il_bsdf_init's */
-    put3(l->cos_dir, k, drawn->cos_dir);
+    put3(l->cos_dir, k, in->cos_dir);
 }
 
 /* Lane k's light sample inputs, or false when the sample does not land on a
  * triangle light nee8 can take (then zeros, never read as a result). */
-static bool fill_light(const il_scene *s, const il_pt_drawn *drawn, lanes *l, int k)
+static bool fill_light(const il_scene *s, const il_diffuse_in *in, lanes *l, int k)
 {
-    uint32_t li = s->num_lights > 0 ? il_light_select(s, drawn->u[0].x) : 0;
+    uint32_t li = s->num_lights > 0 ? il_light_select(s, in->u_select) : 0;
     const il_light *light = s->num_lights > 0 ? &s->lights[li] : NULL;
     const il_mesh *lm = light && light->kind == IL_LIGHTK_AREA ? &s->meshes[light->mesh] : NULL;
     bool ok = lm && !lm->normals && lm->geom && s->light_pmf[li] > 0.0f;
@@ -271,8 +273,8 @@ static bool fill_light(const il_scene *s, const il_pt_drawn *drawn, lanes *l, in
     l->area[k] = ok ? light->area : 0.0f;
     l->pmf[k] = ok ? s->light_pmf[li] : 0.0f;
     l->two_sided[k] = ok && light->two_sided ? -1.0f : 0.0f; /* a mask: the sign bit */
-    l->ux[k] = drawn->u[1].x;
-    l->uy[k] = drawn->u[1].y;
+    l->ux[k] = in->u_light.x;
+    l->uy[k] = in->u_light.y;
     return ok;
 }
 
@@ -290,43 +292,39 @@ static void copy_lane0(lanes *l, int k)
 
 static il_vec3 get3(const float a[3][LANES], int k) { return v3(a[0][k], a[1][k], a[2][k]); }
 
-/* The results of lane k into its path and its drawn record. */
-static void store_lane(const lanes *l, bool nee, il_pt_state *ps, il_pt_drawn *d, int k)
+/* Lane k's results. */
+static void store_lane(const lanes *l, bool nee, il_diffuse_out *out, int k)
 {
-    d->nee_done = nee;
-    if (nee && l->cast[k] != 0.0f) {
-        ps->shadow = true;
-        ps->rays++;
-        ps->shadow_ray = (il_ray){.org = get3(l->org, k), .tmin = 0.0f, .dir = get3(l->dir, k),
-                                  .tmax = 1.0f - 1e-4f};
-        ps->shadow_L = get3(l->shadow_L, k);
+    out->nee_done = nee;
+    out->shadow = nee && l->cast[k] != 0.0f;
+    if (out->shadow) {
+        out->shadow_ray = (il_ray){.org = get3(l->org, k), .tmin = 0.0f, .dir = get3(l->dir, k),
+                                   .tmax = 1.0f - 1e-4f}; /* il_shadow_ray's */
+        out->shadow_L = get3(l->shadow_L, k);
     }
-    d->next_done = true;
-    d->next_ok = l->next_ok[k] != 0.0f;
-    d->next_beta = get3(l->next_beta, k);
-    d->next_pdf = l->next_pdf[k];
-    d->next_ray = (il_ray){.org = get3(l->next_org, k), .tmin = 0.0f, .dir = get3(l->next_dir, k),
-                           .tmax = INFINITY};
+    out->next_done = true;
+    out->next_ok = l->next_ok[k] != 0.0f;
+    out->next_beta = get3(l->next_beta, k);
+    out->next_pdf = l->next_pdf[k];
+    out->next_ray = (il_ray){.org = get3(l->next_org, k), .tmin = 0.0f, .dir = get3(l->next_dir, k),
+                             .tmax = INFINITY};
 }
 
-IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, il_pt_state *st, const uint32_t *paths,
-                                      const uint32_t *slots, uint32_t n, const il_surface *surf,
-                                      il_pt_drawn *drawn)
+IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in,
+                                      il_diffuse_out *const *out, uint32_t n, il_diffuse_nee nee)
 {
     lanes l;
-    uint32_t lane_path[LANES], lane_slot[LANES];
+    uint32_t lane_vertex[LANES];
     bool lane_nee[LANES];
     float epsilon = il_trace_epsilon(s->tracer);
     int k = 0;
     for (uint32_t i = 0; i <= n; i++) {
         if (i < n) {
-            uint32_t j = paths[i], a = slots[i];
-            if (surf[a].material->type != IL_MATERIAL_DIFFUSE)
+            if (in[i].surf->material->type != IL_MATERIAL_DIFFUSE)
                 continue;
-            fill_vertex(s, &st[j], &surf[a], &drawn[a], &l, k);
-            lane_nee[k] = fill_light(s, &drawn[a], &l, k);
-            lane_path[k] = j;
-            lane_slot[k++] = a;
+            fill_vertex(s, &in[i], &l, k);
+            lane_nee[k] = fill_light(s, &in[i], &l, k);
+            lane_vertex[k++] = i;
             if (k < LANES)
                 continue;
         }
@@ -334,25 +332,24 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, il_pt_state *st, const 
             break;
         for (int e = k; e < LANES; e++)
             copy_lane0(&l, e);
-        nee8(&l, epsilon);
+        nee8(&l, epsilon, nee);
         next8(&l, epsilon);
         for (int e = 0; e < k; e++)
-            store_lane(&l, lane_nee[e], &st[lane_path[e]], &drawn[lane_slot[e]], e);
+            store_lane(&l, lane_nee[e], out[lane_vertex[e]], e);
         k = 0;
     }
 }
 #endif
 
-void il_pt_diffuse_wave(const il_scene *s, il_pt_state *st, const uint32_t *paths,
-                        const uint32_t *slots, uint32_t n, const il_surface *surf, il_pt_drawn *drawn,
-                        il_pt_strategy strategy)
+void il_diffuse_wave(const il_scene *s, const il_diffuse_in *in, il_diffuse_out *const *out,
+                     uint32_t n, il_diffuse_nee nee)
 {
     for (uint32_t i = 0; i < n; i++)
-        drawn[slots[i]].nee_done = drawn[slots[i]].next_done = false;
-#ifdef IL_NEE_AVX2
-    if (strategy == IL_PT_MIS && __builtin_cpu_supports("avx2"))
-        diffuse_wave_avx2(s, st, paths, slots, n, surf, drawn);
+        out[i]->nee_done = out[i]->shadow = out[i]->next_done = out[i]->next_ok = false;
+#ifdef IL_DIFFUSE_AVX2
+    if (__builtin_cpu_supports("avx2"))
+        diffuse_wave_avx2(s, in, out, n, nee);
 #else
-    (void)s, (void)st, (void)paths, (void)surf, (void)strategy;
+    (void)s, (void)in, (void)nee;
 #endif
 }
