@@ -251,7 +251,9 @@ static void fill_vertex(const il_scene *s, const il_diffuse_in *in, lanes *l, in
     put3(l->ns, k, surf->ns);
     put3(l->wo, k, in->wo);
     put3(l->beta, k, in->beta);
-    put3(l->kd, k, v3_max(il_material_diffuse(s, surf->material, surf->uv), v3s(0.0f))); /* il_bsdf_init's */
+    const il_material *m = surf->material;
+    il_vec3 kd = m->diffuse_texture ? il_material_diffuse(s, m, surf->uv) : m->diffuse;
+    put3(l->kd, k, v3_max(kd, v3s(0.0f))); /* il_bsdf_init's */
     put3(l->cos_dir, k, in->cos_dir);
 }
 
@@ -259,23 +261,19 @@ static void fill_vertex(const il_scene *s, const il_diffuse_in *in, lanes *l, in
  * triangle light nee8 can take (then zeros, never read as a result). */
 static bool fill_light(const il_scene *s, const il_diffuse_in *in, lanes *l, int k)
 {
-    uint32_t li = s->num_lights > 0 ? il_light_select(s, in->u_select) : 0;
-    const il_light *light = s->num_lights > 0 ? &s->lights[li] : NULL;
-    const il_mesh *lm = light && light->kind == IL_LIGHTK_AREA ? &s->meshes[light->mesh] : NULL;
-    bool ok = lm && !lm->normals && lm->geom && s->light_pmf[li] > 0.0f;
-    const il_tri_geom *g = ok ? &lm->geom[light->prim] : NULL;
-    il_vec3 zero = v3s(0.0f);
-    put3(l->q0, k, ok ? g->p0 : zero);
-    put3(l->q1, k, ok ? g->p1 : zero);
-    put3(l->q2, k, ok ? g->p2 : zero);
-    put3(l->lng, k, ok ? g->ng : zero);
-    put3(l->rad, k, ok ? light->radiance : zero);
-    l->area[k] = ok ? light->area : 0.0f;
-    l->pmf[k] = ok ? s->light_pmf[li] : 0.0f;
-    l->two_sided[k] = ok && light->two_sided ? -1.0f : 0.0f; /* a mask: the sign bit */
+    static const il_light_tri none = {.usable = false};
+    const il_light_tri *t = s->num_lights > 0 ? &s->light_tris[il_light_select(s, in->u_select)] : &none;
+    put3(l->q0, k, t->p0);
+    put3(l->q1, k, t->p1);
+    put3(l->q2, k, t->p2);
+    put3(l->lng, k, t->ng);
+    put3(l->rad, k, t->radiance);
+    l->area[k] = t->area;
+    l->pmf[k] = t->pmf;
+    l->two_sided[k] = t->two_sided ? -1.0f : 0.0f; /* a mask: the sign bit */
     l->ux[k] = in->u_light.x;
     l->uy[k] = in->u_light.y;
-    return ok;
+    return t->usable;
 }
 
 /* Lane k takes lane 0's inputs: the unused lanes of a short batch. */

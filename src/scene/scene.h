@@ -82,6 +82,16 @@ typedef struct il_light {
     float power;           /* total emitted power (luminance-weighted), for selection */
 } il_light;
 
+/* A light as the batched light sampling (methods/diffuse_wave.c) reads it,
+ * in one record instead of four tables: `usable` for a triangle light of a
+ * mesh without authored normals (its normal is il_tri_geom.ng) and a
+ * non-zero selection probability pmf; the rest is then set. */
+typedef struct il_light_tri {
+    il_vec3 p0, p1, p2, ng, radiance;
+    float area, pmf;
+    bool two_sided, usable;
+} il_light_tri;
+
 typedef struct il_scene_camera {
     il_camera_desc desc;   /* defaults resolved */
     bool present;
@@ -116,6 +126,7 @@ struct il_scene {
     float *light_cdf;                /* num_lights+1 entries, selection by power */
     float *light_pmf;                /* num_lights entries */
     uint32_t **triangle_light;       /* per mesh, per triangle: index into lights or IL_NO_LIGHT */
+    il_light_tri *light_tris;        /* num_lights entries: what sampling reads of a triangle light */
     uint32_t environment_light;      /* index into lights or IL_NO_LIGHT */
 };
 
