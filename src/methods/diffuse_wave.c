@@ -1,8 +1,9 @@
 /* The Lambertian vertices of a wave, eight at a time in AVX2 lanes (see
  * diffuse_wave.h).
  *
- * The commonest vertex of an interior scene is a diffuse surface whose light
- * sample lands on a triangle light.  Its light sample is a chain of
+ * The commonest vertex of a scene is a diffuse surface whose light sample
+ * lands on a triangle light, a point light or the sun.  Its light sample is
+ * a chain of
  * dependent square roots, divisions and dot products (il_light_sample_at,
  * il_bsdf_eval, the power heuristic, il_shadow_ray), and its next ray
  * another (the shading frame, il_bsdf_sample_dir_cos, il_offset_origin),
@@ -43,7 +44,7 @@ typedef struct lanes {
     float p[3][LANES], ng[3][LANES], ns[3][LANES], wo[3][LANES], beta[3][LANES], kd[3][LANES];
     float cos_dir[3][LANES];
     float q0[3][LANES], q1[3][LANES], q2[3][LANES], lng[3][LANES], area[LANES], pmf[LANES];
-    float rad[3][LANES], two_sided[LANES], ux[LANES], uy[LANES];
+    float rad[3][LANES], two_sided[LANES], is_point[LANES], is_dir[LANES], ux[LANES], uy[LANES];
     float cast[LANES], org[3][LANES], dir[3][LANES], shadow_L[3][LANES];
     float next_ok[LANES], next_beta[3][LANES], next_pdf[LANES], next_org[3][LANES], next_dir[3][LANES];
 } lanes;
@@ -124,31 +125,45 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     const __m256 bsdf_eps = _mm256_set1_ps(1e-7f), inv_pi = _mm256_set1_ps(IL_INV_PI);
     v3x8 p = load3(l->p), ng = load3(l->ng), ns = load3(l->ns), wo = load3(l->wo);
 
-    /* il_light_sample_at, area light: il_sample_triangle, then the point
-     * p0 b0 + p1 b1 + p2 b2 (il_scene_point). */
+    const __m256 is_point = _mm256_loadu_ps(l->is_point), is_dir = _mm256_loadu_ps(l->is_dir);
+    const __m256 is_delta = _mm256_or_ps(is_point, is_dir), all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    /* il_light_sample_at.  A triangle: il_sample_triangle, then the point
+     * p0 b0 + p1 b1 + p2 b2 (il_scene_point); a point light: its position. */
     __m256 ux = _mm256_loadu_ps(l->ux), uy = _mm256_loadu_ps(l->uy);
     __m256 hx = _mm256_mul_ps(_mm256_set1_ps(0.5f), ux), hy = _mm256_mul_ps(_mm256_set1_ps(0.5f), uy);
     __m256 upper = _mm256_cmp_ps(ux, uy, _CMP_LT_OQ);
     __m256 b1 = sel(upper, hx, _mm256_sub_ps(ux, hy));
     __m256 b2 = sel(upper, _mm256_sub_ps(uy, hx), hy);
     __m256 b0 = _mm256_sub_ps(_mm256_sub_ps(one, b1), b2);
-    v3x8 q = add3(add3(scale3(load3(l->q0), b0), scale3(load3(l->q1), b1)), scale3(load3(l->q2), b2));
+    v3x8 q0 = load3(l->q0);
+    v3x8 q = add3(add3(scale3(q0, b0), scale3(load3(l->q1), b1)), scale3(load3(l->q2), b2));
+    q = sel3(is_point, q0, q);
     v3x8 lng = load3(l->lng);
-    /* aim_at */
+    /* aim_at; a directional light's wi is its record's p0. */
     v3x8 d = sub3(q, p);
     __m256 dist2 = dot3(d, d);
-    __m256 ok = gt0(dist2);
     __m256 dist = _mm256_sqrt_ps(dist2);
-    v3x8 wi = scale3(d, _mm256_div_ps(one, dist));
-    /* Radiance towards p, and the pdf: selection times area_to_solid_angle. */
+    v3x8 wi = sel3(is_dir, q0, scale3(d, _mm256_div_ps(one, dist)));
+    /* A triangle's radiance towards p and its pdf: selection times
+     * area_to_solid_angle; a point light's I / d^2 (pbrt-v4 12.1); a
+     * directional light's irradiance; delta lights' pdf the selection's. */
+    v3x8 le = load3(l->rad);
+    __m256 pmf = _mm256_loadu_ps(l->pmf);
     __m256 facing = _mm256_or_ps(_mm256_loadu_ps(l->two_sided), gt0(dot3(lng, neg3(wi))));
-    v3x8 rad = sel3(facing, load3(l->rad), (v3x8){zero, zero, zero});
+    v3x8 rad_tri = sel3(facing, le, (v3x8){zero, zero, zero});
     __m256 c = fabs8(dot3(lng, wi));
     __m256 area = _mm256_loadu_ps(l->area);
     __m256 pdf_area = sel(_mm256_and_ps(gt0(c), gt0(area)), _mm256_div_ps(dist2, _mm256_mul_ps(area, c)), zero);
-    __m256 pdf = _mm256_mul_ps(_mm256_loadu_ps(l->pmf), pdf_area);
-    __m256 finite = _mm256_cmp_ps(fabs8(pdf), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
-    ok = _mm256_and_ps(ok, _mm256_and_ps(_mm256_and_ps(gt0(pdf), finite), _mm256_xor_ps(is_zero3(rad), _mm256_castsi256_ps(_mm256_set1_epi32(-1)))));
+    __m256 pdf_tri = _mm256_mul_ps(pmf, pdf_area);
+    __m256 finite = _mm256_cmp_ps(fabs8(pdf_tri), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
+    __m256 ok_tri = _mm256_and_ps(_mm256_and_ps(gt0(pdf_tri), finite), _mm256_xor_ps(is_zero3(rad_tri), all));
+    v3x8 rad = sel3(is_point, scale3(le, _mm256_div_ps(one, dist2)), sel3(is_dir, le, rad_tri));
+    __m256 pdf = sel(is_delta, pmf, pdf_tri);
+    /* Directional: always; a point light: p not on it; a triangle: also a
+     * usable pdf and light towards p. */
+    __m256 ok = _mm256_or_ps(is_dir, _mm256_and_ps(gt0(dist2), _mm256_or_ps(is_point, ok_tri)));
+    if (mode == IL_DIFFUSE_NEE_PLAIN) /* il_direct_light_sample's own tests */
+        ok = _mm256_and_ps(ok, _mm256_and_ps(gt0(pdf), _mm256_xor_ps(is_zero3(rad), all)));
 
     /* il_sides_agree(surf, wo, wi) */
     __m256 wo_ng = dot3(wo, ng), wo_ns = dot3(wo, ns), wi_ns = dot3(wi, ns);
@@ -173,18 +188,20 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
         /* The power heuristic (Veach 1997, 9.2.4) for the light sample. */
         __m256 f2 = _mm256_mul_ps(pdf, pdf), g2 = _mm256_mul_ps(bsdf_pdf, bsdf_pdf);
         __m256 sum = _mm256_add_ps(f2, g2);
-        w = sel(gt0(sum), _mm256_div_ps(f2, sum), zero);
+        w = sel(is_delta, one, sel(gt0(sum), _mm256_div_ps(f2, sum), zero));
         ok = _mm256_and_ps(ok, _mm256_and_ps(gt0(w), gt0(cos_i)));
     } else {
         ok = _mm256_and_ps(ok, _mm256_cmp_ps(cos_i, zero, _CMP_NLE_UQ)); /* !(cos_i <= 0) */
     }
 
-    /* il_shadow_ray(p, ng, q, lng), and what the ray carries. */
+    /* il_shadow_ray(p, ng, q, lng) (a point light's lng is zero: its
+     * target is q itself); towards a directional light a ray along wi
+     * without end.  And what the ray carries. */
     __m256 eps = _mm256_set1_ps(epsilon);
     v3x8 o = offset_origin(eps, p, ng, d);
     v3x8 target = sel3(is_zero3(lng), q, offset_origin(eps, q, lng, neg3(d)));
-    store3(l->org, o);
-    store3(l->dir, sub3(target, o));
+    store3(l->org, sel3(is_dir, offset_origin(eps, p, ng, wi), o));
+    store3(l->dir, sel3(is_dir, wi, sub3(target, o)));
     if (mode == IL_DIFFUSE_NEE_MIS)
         store3(l->shadow_L, scale3(mul3(load3(l->beta), mul3(f, rad)), _mm256_div_ps(_mm256_mul_ps(cos_i, w), pdf)));
     else
@@ -257,23 +274,27 @@ static void fill_vertex(const il_scene *s, const il_diffuse_in *in, lanes *l, in
     put3(l->cos_dir, k, in->cos_dir);
 }
 
-/* Lane k's light sample inputs, or false when the sample does not land on a
- * triangle light nee8 can take (then zeros, never read as a result). */
-static bool fill_light(const il_scene *s, const il_diffuse_in *in, lanes *l, int k)
+/* Lane k's light sample inputs (the record of the light u_select picks);
+ * returns its kind, IL_LREC_NONE when nee8 cannot take it (then its
+ * results are never read). */
+static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes *l, int k)
 {
-    static const il_light_tri none = {.usable = false};
-    const il_light_tri *t = s->num_lights > 0 ? &s->light_tris[il_light_select(s, in->u_select)] : &none;
-    put3(l->q0, k, t->p0);
-    put3(l->q1, k, t->p1);
-    put3(l->q2, k, t->p2);
-    put3(l->lng, k, t->ng);
-    put3(l->rad, k, t->radiance);
-    l->area[k] = t->area;
-    l->pmf[k] = t->pmf;
-    l->two_sided[k] = t->two_sided ? -1.0f : 0.0f; /* a mask: the sign bit */
+    static const il_light_rec none = {.kind = IL_LREC_NONE};
+    const il_light_rec *r = s->num_lights > 0 ? &s->light_recs[il_light_select(s, in->u_select)] : &none;
+    put3(l->q0, k, r->p0);
+    put3(l->q1, k, r->p1);
+    put3(l->q2, k, r->p2);
+    put3(l->lng, k, r->ng);
+    put3(l->rad, k, r->radiance);
+    l->area[k] = r->area;
+    l->pmf[k] = r->pmf;
+    /* Masks: the sign bit set. */
+    l->two_sided[k] = r->two_sided ? -1.0f : 0.0f;
+    l->is_point[k] = r->kind == IL_LREC_POINT ? -1.0f : 0.0f;
+    l->is_dir[k] = r->kind == IL_LREC_DIRECTIONAL ? -1.0f : 0.0f;
     l->ux[k] = in->u_light.x;
     l->uy[k] = in->u_light.y;
-    return t->usable;
+    return r->kind;
 }
 
 /* Lane k takes lane 0's inputs: the unused lanes of a short batch. */
@@ -285,19 +306,22 @@ static void copy_lane0(lanes *l, int k)
         for (int c = 0; c < 3; c++)
             v3s_[i][c][k] = v3s_[i][c][0];
     l->area[k] = l->area[0], l->pmf[k] = l->pmf[0], l->two_sided[k] = l->two_sided[0];
+    l->is_point[k] = l->is_point[0], l->is_dir[k] = l->is_dir[0];
     l->ux[k] = l->ux[0], l->uy[k] = l->uy[0];
 }
 
 static il_vec3 get3(const float a[3][LANES], int k) { return v3(a[0][k], a[1][k], a[2][k]); }
 
 /* Lane k's results. */
-static void store_lane(const lanes *l, bool nee, il_diffuse_out *out, int k)
+static void store_lane(const lanes *l, il_lrec_kind light, il_diffuse_out *out, int k)
 {
-    out->nee_done = nee;
-    out->shadow = nee && l->cast[k] != 0.0f;
+    out->nee_done = light != IL_LREC_NONE;
+    out->shadow = out->nee_done && l->cast[k] != 0.0f;
     if (out->shadow) {
+        /* il_shadow_ray's end short of the light, or none for a direction */
+        float tmax = light == IL_LREC_DIRECTIONAL ? INFINITY : 1.0f - 1e-4f;
         out->shadow_ray = (il_ray){.org = get3(l->org, k), .tmin = 0.0f, .dir = get3(l->dir, k),
-                                   .tmax = 1.0f - 1e-4f}; /* il_shadow_ray's */
+                                   .tmax = tmax};
         out->shadow_L = get3(l->shadow_L, k);
     }
     out->next_done = true;
@@ -313,7 +337,7 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in
 {
     lanes l;
     uint32_t lane_vertex[LANES];
-    bool lane_nee[LANES];
+    il_lrec_kind lane_light[LANES];
     float epsilon = il_trace_epsilon(s->tracer);
     int k = 0;
     for (uint32_t i = 0; i <= n; i++) {
@@ -321,7 +345,7 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in
             if (in[i].surf->material->type != IL_MATERIAL_DIFFUSE)
                 continue;
             fill_vertex(s, &in[i], &l, k);
-            lane_nee[k] = fill_light(s, &in[i], &l, k);
+            lane_light[k] = fill_light(s, &in[i], &l, k);
             lane_vertex[k++] = i;
             if (k < LANES)
                 continue;
@@ -333,7 +357,7 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in
         nee8(&l, epsilon, nee);
         next8(&l, epsilon);
         for (int e = 0; e < k; e++)
-            store_lane(&l, lane_nee[e], out[lane_vertex[e]], e);
+            store_lane(&l, lane_light[e], out[lane_vertex[e]], e);
         k = 0;
     }
 }

@@ -36,9 +36,11 @@ typedef enum il_diffuse_nee {
     IL_DIFFUSE_NEE_PLAIN
 } il_diffuse_nee;
 
-/* What was computed.  nee_done: the light sample was taken (a triangle light
- * of a mesh without authored normals; else the caller samples the light
- * itself), and `shadow` says whether it casts shadow_ray carrying shadow_L.
+/* What was computed.  nee_done: the light sample was taken (the light
+ * picked is a triangle of a mesh without authored normals, a point light or
+ * a directional light: see il_light_rec; for a spot light or the
+ * environment the caller samples the light itself), and `shadow` says
+ * whether it casts shadow_ray carrying shadow_L.
  * next_done: the BSDF sample was taken (always, for a Lambertian vertex on a
  * CPU with AVX2); next_ok when il_bsdf_sample_dir_cos succeeded and
  * il_sides_agree holds, then next_beta = beta times the sample's weight,

@@ -64,7 +64,7 @@ void il_lights_free(il_scene *s)
     free(s->lights);
     free(s->light_cdf);
     free(s->light_pmf);
-    free(s->light_tris);
+    free(s->light_recs);
     if (s->triangle_light) {
         for (uint32_t i = 0; i < s->num_meshes; i++)
             free(s->triangle_light[i]);
@@ -73,7 +73,7 @@ void il_lights_free(il_scene *s)
     s->lights = NULL;
     s->light_cdf = NULL;
     s->light_pmf = NULL;
-    s->light_tris = NULL;
+    s->light_recs = NULL;
     s->triangle_light = NULL;
     s->num_lights = 0;
     s->environment_light = IL_NO_LIGHT;
@@ -85,22 +85,34 @@ static il_status build_fail(il_scene *s, il_status st)
     return st;
 }
 
-/* scene->light_tris (see il_light_tri); after the triangle records. */
-static il_status build_light_tris(il_scene *s, il_error *err)
+/* scene->light_recs (see il_light_rec); after the triangle records. */
+static il_status build_light_recs(il_scene *s, il_error *err)
 {
-    s->light_tris = il_calloc(s->num_lights, sizeof(il_light_tri), err);
-    if (!s->light_tris)
+    s->light_recs = il_calloc(s->num_lights, sizeof(il_light_rec), err);
+    if (!s->light_recs)
         return build_fail(s, IL_ERR_MEMORY);
     for (uint32_t i = 0; i < s->num_lights; i++) {
         const il_light *l = &s->lights[i];
-        const il_mesh *m = l->kind == IL_LIGHTK_AREA ? &s->meshes[l->mesh] : NULL;
-        if (!m || m->normals || !m->geom || !(s->light_pmf[i] > 0.0f))
+        il_light_rec *r = &s->light_recs[i];
+        if (!(s->light_pmf[i] > 0.0f))
             continue;
-        const il_tri_geom *g = &m->geom[l->prim];
-        s->light_tris[i] = (il_light_tri){.p0 = g->p0, .p1 = g->p1, .p2 = g->p2, .ng = g->ng,
-                                          .radiance = l->radiance, .area = l->area,
-                                          .pmf = s->light_pmf[i], .two_sided = l->two_sided,
-                                          .usable = true};
+        r->pmf = s->light_pmf[i];
+        if (l->kind == IL_LIGHTK_AREA) {
+            const il_mesh *m = &s->meshes[l->mesh];
+            if (m->normals || !m->geom)
+                continue;
+            const il_tri_geom *g = &m->geom[l->prim];
+            *r = (il_light_rec){.p0 = g->p0, .p1 = g->p1, .p2 = g->p2, .ng = g->ng, .radiance = l->radiance,
+                                .area = l->area, .pmf = r->pmf, .two_sided = l->two_sided,
+                                .kind = IL_LREC_TRIANGLE};
+        } else if (l->kind == IL_LIGHTK_POINT) {
+            *r = (il_light_rec){.p0 = l->position, .radiance = l->intensity, .pmf = r->pmf,
+                                .kind = IL_LREC_POINT};
+        } else if (l->kind == IL_LIGHTK_DIRECTIONAL) {
+            /* il_light_sample_at's wi, computed once. */
+            *r = (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = r->pmf,
+                                .kind = IL_LREC_DIRECTIONAL};
+        }
     }
     return IL_OK;
 }
@@ -226,7 +238,7 @@ il_status il_lights_build(il_scene *s, il_error *err)
     for (uint32_t i = 0; i < count; i++)
         s->light_pmf[i] = il_distrib1d_pmf(&d, i);
     il_distrib1d_free(&d);
-    return build_light_tris(s, err);
+    return build_light_recs(s, err);
 }
 
 /* The light il_distrib1d_sample_discrete picks from the scene's selection

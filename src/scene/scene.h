@@ -83,14 +83,21 @@ typedef struct il_light {
 } il_light;
 
 /* A light as the batched light sampling (methods/diffuse_wave.c) reads it,
- * in one record instead of four tables: `usable` for a triangle light of a
- * mesh without authored normals (its normal is il_tri_geom.ng) and a
- * non-zero selection probability pmf; the rest is then set. */
-typedef struct il_light_tri {
-    il_vec3 p0, p1, p2, ng, radiance;
-    float area, pmf;
-    bool two_sided, usable;
-} il_light_tri;
+ * in one record instead of four tables.  kind says which lights it takes:
+ * a triangle of a mesh without authored normals (whose normal is
+ * il_tri_geom.ng), a point light, a directional light, each with a non-zero
+ * selection probability pmf; IL_LREC_NONE for the others (spot lights,
+ * the environment), which the scalar il_light_sample_at samples. */
+typedef enum il_lrec_kind { IL_LREC_NONE = 0, IL_LREC_TRIANGLE, IL_LREC_POINT, IL_LREC_DIRECTIONAL } il_lrec_kind;
+typedef struct il_light_rec {
+    il_vec3 p0, p1, p2;    /* TRIANGLE: the vertices; POINT: p0 the position;
+                              DIRECTIONAL: p0 the unit direction towards the light */
+    il_vec3 ng;            /* TRIANGLE: the unit normal; else zero */
+    il_vec3 radiance;      /* TRIANGLE: emitted radiance; POINT: intensity; DIRECTIONAL: irradiance */
+    float area, pmf;       /* area: TRIANGLE */
+    bool two_sided;        /* TRIANGLE */
+    il_lrec_kind kind;
+} il_light_rec;
 
 typedef struct il_scene_camera {
     il_camera_desc desc;   /* defaults resolved */
@@ -126,7 +133,7 @@ struct il_scene {
     float *light_cdf;                /* num_lights+1 entries, selection by power */
     float *light_pmf;                /* num_lights entries */
     uint32_t **triangle_light;       /* per mesh, per triangle: index into lights or IL_NO_LIGHT */
-    il_light_tri *light_tris;        /* num_lights entries: what sampling reads of a triangle light */
+    il_light_rec *light_recs;        /* num_lights entries: what batched sampling reads of a light */
     uint32_t environment_light;      /* index into lights or IL_NO_LIGHT */
 };
 

@@ -1,11 +1,12 @@
 /* il_diffuse_wave (methods/diffuse_wave.c) against the scalar code it
  * stands for, bit for bit: for thousands of vertices found by random rays
  * in scenes with one- and two-sided triangle lamps, a ball lamp with
- * authored normals, a point light, Lambertian, Phong and mirror surfaces, its light sample must equal il_pt_step_at's
+ * authored normals, a point, a directional and a spot light, Lambertian,
+ * Phong and mirror surfaces, its light sample must equal il_pt_step_at's
  * (under MIS) and il_direct_light_sample's (plain), and its BSDF sample
  * il_bsdf_sample_dir_cos's.  Vertices it must leave to the caller (other
- * materials, lights other than triangles of meshes without normals) must
- * keep their flags false.  On a CPU without AVX2 it takes nothing. */
+ * materials; spot lights and triangles of meshes with normals) must keep
+ * their flags false.  On a CPU without AVX2 it takes nothing. */
 #include <string.h>
 
 #include "scene_build.h"
@@ -39,11 +40,13 @@ static bool mis_light_sample(const il_scene *s, const il_surface *surf, il_vec3 
         return false;
     float bsdf_pdf = 0.0f;
     il_vec3 f = il_bsdf_eval(&b, wo, ls.wi, &bsdf_pdf);
-    float w = il_power_heuristic(ls.pdf, bsdf_pdf);
+    float w = ls.delta ? 1.0f : il_power_heuristic(ls.pdf, bsdf_pdf);
     float cos_i = fabsf(v3_dot(ls.wi, b.frame.n));
     if (!(w > 0.0f && cos_i > 0.0f && !v3_is_zero(f)))
         return false;
-    *shadow = il_shadow_ray(s->tracer, surf->p, surf->ng, ls.p, ls.n);
+    *shadow = isinf(ls.dist) ? (il_ray){.org = il_offset_origin(s->tracer, surf->p, surf->ng, ls.wi),
+                                        .tmin = 0.0f, .dir = ls.wi, .tmax = INFINITY}
+                             : il_shadow_ray(s->tracer, surf->p, surf->ng, ls.p, ls.n);
     *shadow_L = v3_scale(v3_mul(beta, v3_mul(f, ls.radiance)), cos_i * w / ls.pdf);
     return true;
 }
@@ -104,8 +107,9 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
             const il_surface *sf = &surf[i];
             bool diffuse = sf->material->type == IL_MATERIAL_DIFFUSE;
             const il_light *l = &s->lights[il_light_select(s, in[i].u_select)];
-            bool tri = l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals;
-            if (out[i].next_done != (avx2 && diffuse) || out[i].nee_done != (avx2 && diffuse && tri)) {
+            bool takes = (l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals) ||
+                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_DIRECTIONAL;
+            if (out[i].next_done != (avx2 && diffuse) || out[i].nee_done != (avx2 && diffuse && takes)) {
                 bad_flags++;
                 continue;
             }
@@ -146,8 +150,8 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
 }
 
 /* A room of Lambertian walls with a Phong floor and a mirror, lit by a
- * one-sided and a two-sided quad lamp, a ball lamp (authored normals) and a
- * point light. */
+ * one-sided and a two-sided quad lamp, a ball lamp (authored normals), a
+ * point light, the sun and a spot light. */
 static il_scene *mixed_room(void)
 {
     il_scene *s = new_scene();
@@ -167,8 +171,13 @@ static il_scene *mixed_room(void)
     add_quad(s, v3(0, 1.95f, 0), v3(0.3f, 0, 0), v3(0, 0, 0.3f), lamp);
     add_quad(s, v3(-1, 1, -1), v3(0.2f, 0, 0), v3(0, 0.2f, 0.1f), lamp2);
     add_ball(s, v3(1, 0.4f, -1), 0.2f, lamp);
-    il_light_desc pl = {.type = IL_LIGHT_POINT, .position = {0.5f, 1.5f, 1}, .intensity = {2, 2, 2}};
-    CHECK_OK(il_scene_add_light(s, &pl, &g_err), &g_err);
+    const il_light_desc lights[] = {
+        {.type = IL_LIGHT_POINT, .position = {0.5f, 1.5f, 1}, .intensity = {2, 2, 2}},
+        {.type = IL_LIGHT_DIRECTIONAL, .direction = {0.3f, -1, 0.2f}, .intensity = {1, 0.9f, 0.8f}},
+        {.type = IL_LIGHT_SPOT, .position = {-1, 1.8f, 1}, .direction = {0.2f, -1, -0.3f},
+         .intensity = {3, 3, 3}, .spot_angle = 40.0f, .spot_exponent = 4.0f}};
+    for (int i = 0; i < 3; i++)
+        CHECK_OK(il_scene_add_light(s, &lights[i], &g_err), &g_err);
     set_camera(s, v3(0, 1, 3.5f), v3(0, 1, 0), v3(0, 1, 0), 55.0f);
     commit(s);
     return s;
