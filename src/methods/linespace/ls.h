@@ -15,6 +15,7 @@
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
+#include "trace/trace.h"
 
 /* ------------------------------------------------------------ settings */
 
@@ -86,33 +87,78 @@ double il_ls_shaft_measures(il_vec3 size, uint32_t n, uint32_t k, float *out);
 
 /* ----------------------------------------------------- the structure */
 
-/* One injection entry: radiance (W m^-2 sr^-1) once finished, and how many
- * segment deposits it holds. */
-typedef struct il_ls_entry {
-    float rgb[3];
-    uint32_t count;
-} il_ls_entry;
-
-/* Candidate lists hold voxel-local triangle numbers; a shaft with more
- * candidates than IL_LS_MAX_CAND, or a voxel with more than IL_LS_DENSE
- * triangles, gets the single entry IL_LS_OVERFLOW: its occlusion test casts
- * a ray clipped to the voxel through the scene's BVH instead. */
+/* Candidate lists hold voxel-local triangle numbers (a byte each: a voxel
+ * has at most IL_LS_DENSE triangles); a shaft with more candidates than
+ * IL_LS_MAX_CAND, or a voxel with more than IL_LS_DENSE triangles, is
+ * marked IL_LS_REC_OVERFLOW instead: its occlusion test casts a ray
+ * clipped to the voxel through the scene's BVH. */
 #define IL_LS_MAX_CAND 16u
 #define IL_LS_DENSE 96u
-#define IL_LS_OVERFLOW 0xffffu
+#define IL_LS_OVERFLOW 0xffffu      /* the build's marker for such a list */
+
+/* One stored shaft, everything a lookup reads in 32 bytes (half a cache
+ * line, the array 64-byte aligned: one line per lookup): the radiance
+ * (W m^-2 sr^-1) of its two directions once injected, whether each holds
+ * any deposit, and its candidate list, the first IL_LS_INLINE candidates
+ * here and the rest in the voxel's part of `cand`. */
+#define IL_LS_INLINE 4u
+typedef struct il_ls_rec {
+    float rgb[2][3];
+    uint32_t info;                 /* IL_LS_REC_* fields below */
+    uint8_t first[IL_LS_INLINE];   /* the first candidates */
+} il_ls_rec;
+#define IL_LS_REC_START_BITS 20u                 /* bits 0-19: start of the rest in cand, from cand_base */
+#define IL_LS_REC_START_MASK ((1u << IL_LS_REC_START_BITS) - 1u)
+#define IL_LS_REC_LEN_SHIFT 20u                  /* bits 20-24: the list's length, 1 to 16 */
+#define IL_LS_REC_LEN_MASK 31u
+#define IL_LS_REC_OVERFLOW (1u << 25)            /* no list: the occlusion test traces */
+#define IL_LS_REC_FILLED(dir) (1u << (26u + (dir))) /* direction dir holds deposits */
+/* Every voxel's rest of the lists fits the 20 bits of the start. */
+_Static_assert(15ull * IL_LS_MAX_N * IL_LS_MAX_N * IL_LS_MAX_N * IL_LS_MAX_N * (IL_LS_MAX_CAND - IL_LS_INLINE) <=
+                   (1ull << IL_LS_REC_START_BITS),
+               "il_ls_rec: candidate start out of range");
+_Static_assert(IL_LS_MAX_CAND <= IL_LS_REC_LEN_MASK, "il_ls_rec: length out of range");
+_Static_assert(IL_LS_DENSE <= 256u, "il_ls_rec: a candidate is one byte");
+_Static_assert(sizeof(il_ls_rec) == 32u, "il_ls_rec: two per cache line");
 
 /* 64 shafts of one Linespace: a bit per shaft stored, and the slot of the
  * first of them (the slot of a stored shaft is first_slot + the stored
- * shafts below it in the word: one cache line per lookup). */
+ * shafts below it in the word), and per direction a bit per shaft whose
+ * entry holds deposits (set by the injection), so that a lookup of an
+ * empty entry ends here without reading its record.  32 bytes: two per
+ * cache line. */
 typedef struct il_ls_word {
     uint64_t mask;
     uint64_t first_slot;
+    uint64_t filled[2];
 } il_ls_word;
+
+/* The bits set in x (a library call for __builtin_popcountll where the
+ * target lacks the instruction: Hacker's Delight 5-1 instead). */
+static inline uint32_t il_ls_popcount(uint64_t x)
+{
+#if defined(__POPCNT__)
+    return (uint32_t)__builtin_popcountll(x);
+#else
+    x -= (x >> 1) & 0x5555555555555555ull;
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return (uint32_t)((x * 0x0101010101010101ull) >> 56);
+#endif
+}
+
+/* A triangle of a voxel as the occlusion test wants it: its corner p0 and
+ * edges e1 = p1 - p0, e2 = p2 - p0, and which triangle of the scene. */
+typedef struct il_ls_tri {
+    il_vec3 p0, e1, e2;
+    uint32_t mesh, prim;
+} il_ls_tri;
 
 typedef struct il_linespace {
     il_vec3 lo, hi;              /* the grid's box */
     il_vec3 vsize;               /* one voxel */
     il_vec3 inv_vsize;           /* 1 / vsize per axis */
+    il_vec3 patch_scale;         /* n / vsize per axis: patches per unit length */
     uint32_t res[3];
     uint32_t n, num_shafts, mask_words;
     int32_t *cell;               /* res[0]*res[1]*res[2]: Linespace index or -1 */
@@ -120,14 +166,18 @@ typedef struct il_linespace {
     uint32_t *voxel_cell;        /* the cell of each Linespace */
     il_ls_word *words;           /* num_voxels * mask_words: shafts stored */
     uint64_t *first_shaft;       /* num_voxels + 1: prefix sums of stored shafts */
-    il_ls_entry *entries;        /* 2 per stored shaft (direction 0, 1) */
+    il_ls_rec *recs;             /* per stored shaft (slot), 64-byte aligned */
     uint64_t *cand_base;         /* num_voxels + 1: prefix sums into cand */
-    uint32_t *cand_end;          /* per stored shaft: end of its list, from its
-                                    voxel's cand_base (the start is the previous
-                                    shaft's end, 0 for a voxel's first) */
-    uint16_t *cand;              /* voxel-local triangle numbers */
-    uint64_t *first_tri;         /* num_voxels + 1: prefix sums into tri */
-    uint32_t *tri_mesh, *tri_prim; /* the triangles overlapping each voxel */
+    uint8_t *cand;               /* the lists' candidates past the first
+                                    IL_LS_INLINE: voxel-local triangle numbers */
+    uint64_t *first_tri;         /* num_voxels + 1: prefix sums of the triangles
+                                    overlapping each voxel */
+    uint32_t *tri_mesh, *tri_prim; /* those triangles, during the build only
+                                    (NULL after il_ls_build) */
+    uint64_t *tri_base;          /* num_voxels + 1: prefix sums into tri */
+    il_ls_tri *tri;              /* the triangles of each voxel that has candidate
+                                    lists (at most IL_LS_DENSE), for the
+                                    occlusion test; none for a denser one */
     float *measure;              /* num_shafts: il_ls_shaft_measures of a voxel */
     uint64_t num_stored, num_cand, num_overflow;
 } il_linespace;
@@ -141,11 +191,35 @@ void il_ls_free(il_linespace *ls);
 uint64_t il_ls_memory(const il_linespace *ls);
 
 /* The cell holding p (clamped to the grid); false outside the grid box. */
-bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3]);
+static inline bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3])
+{
+    const float pp[3] = {p.x, p.y, p.z}, lo[3] = {ls->lo.x, ls->lo.y, ls->lo.z},
+                inv[3] = {ls->inv_vsize.x, ls->inv_vsize.y, ls->inv_vsize.z};
+    for (int i = 0; i < 3; i++) {
+        float x = (pp[i] - lo[i]) * inv[i];
+        if (!(x >= -1e-3f && x <= (float)ls->res[i] + 1e-3f))
+            return false;
+        int k = (int)x; /* truncation: x >= -1e-3 here, and a negative k clamps to 0 */
+        c[i] = (uint32_t)(k < 0 ? 0 : (k >= (int)ls->res[i] ? (int)ls->res[i] - 1 : k));
+    }
+    return true;
+}
 /* The stored-shaft number of (voxel, shaft), or -1 when not stored. */
 int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft);
 /* The box of cell c. */
-void il_ls_cell_box(const il_linespace *ls, const uint32_t c[3], il_vec3 *lo);
+static inline void il_ls_cell_box(const il_linespace *ls, const uint32_t c[3], il_vec3 *lo)
+{
+    *lo = v3(ls->lo.x + ls->vsize.x * (float)c[0], ls->lo.y + ls->vsize.y * (float)c[1],
+             ls->lo.z + ls->vsize.z * (float)c[2]);
+}
+/* The Linespace holding p, and the shaft and direction of the line through
+ * p travelling along d in it, with il_ls_locate's t_in and t_out; false
+ * when p is outside the grid or its voxel is empty.  The same as
+ * il_ls_cell_of, il_ls_cell_box, il_ls_locate and il_ls_shaft_index in
+ * turn, in one pass without branches on the direction (the lookups' hot
+ * path). */
+bool il_ls_find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *voxel, uint32_t *shaft,
+                uint32_t *dir, float *t_in, float *t_out);
 
 
 /* ----------------------------------------------------- injection */
@@ -165,7 +239,9 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *s, uint64_t 
 typedef enum il_ls_lookup_status {
     IL_LS_FOUND = 0,
     IL_LS_EMPTY,            /* outside the grid, no Linespace, shaft not stored or no deposit */
-    IL_LS_OCCLUDED          /* the in-shaft occlusion test found geometry first */
+    IL_LS_OCCLUDED,         /* the in-shaft occlusion test found geometry first */
+    IL_LS_TRACE             /* il_ls_read_probe: found, unless the occlusion ray it
+                               left to the caller hits something (then occluded) */
 } il_ls_lookup_status;
 
 /* The radiance arriving at p from direction w (unit, pointing away from p)
@@ -184,10 +260,13 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
  * in three steps, each done for a whole wave of lookups before the next
  * (the sampling pass): il_ls_probe_at finds the voxel,
  * shaft and direction of (x, w) and starts fetching the shaft's bit word;
- * il_ls_probe_slot finds its slot and starts fetching its entry and
- * candidate range; il_ls_read_probe, called with the same x and w,
+ * il_ls_probe_slot finds its slot, when its entry holds deposits, and
+ * starts fetching its record; il_ls_read_probe, called with the same x and w,
  * finishes the read.  The lookup is bound by cache misses on the
- * Linespace's large arrays, which a wave's probes overlap. */
+ * Linespace's large arrays, which a wave's probes overlap.  Given `ray`,
+ * il_ls_read_probe leaves an occlusion test that must trace the scene (a
+ * shaft without a candidate list) to the caller, who traces it with the
+ * wave's others: it returns IL_LS_TRACE with *ray and *L set. */
 typedef struct il_ls_probe {
     bool found;                  /* a voxel and shaft for the line */
     uint32_t voxel, shaft, dir;
@@ -198,6 +277,6 @@ void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *p
 void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *pr);
 il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
                                      il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
-                                     uint32_t self_prim, il_vec3 *L);
+                                     uint32_t self_prim, il_vec3 *L, il_ray *ray);
 
 #endif

@@ -13,11 +13,15 @@
  *
  * Layout: no allocation per shaft.  Per voxel a bitmask of its stored
  * shafts with a rank per 64-bit word (a shaft's slot is the voxel's first
- * slot + rank + popcount below it), and per stored shaft two entries and
- * the end of its candidate list. */
+ * slot + rank + popcount below it), and per stored shaft a 32-byte record
+ * (il_ls_rec: both directions' radiance and the start of its candidate
+ * list with its first four candidates), the candidates past those in one
+ * array. */
+#define _DEFAULT_SOURCE /* madvise's MADV_HUGEPAGE (Linux) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -53,13 +57,14 @@ void il_ls_free(il_linespace *ls)
     free(ls->voxel_cell);
     free(ls->words);
     free(ls->first_shaft);
-    free(ls->entries);
+    free(ls->recs);
     free(ls->cand_base);
-    free(ls->cand_end);
     free(ls->cand);
     free(ls->first_tri);
     free(ls->tri_mesh);
     free(ls->tri_prim);
+    free(ls->tri_base);
+    free(ls->tri);
     free(ls->measure);
     memset(ls, 0, sizeof *ls);
 }
@@ -68,30 +73,13 @@ uint64_t il_ls_memory(const il_linespace *ls)
 {
     uint64_t cells = (uint64_t)ls->res[0] * ls->res[1] * ls->res[2];
     uint64_t v = ls->num_voxels;
-    uint64_t ntri = v ? ls->first_tri[v] : 0;
+    uint64_t ntri = v ? ls->tri_base[v] : 0;
+    uint64_t ncand = v ? ls->cand_base[v] : 0;
     return cells * sizeof(int32_t) + v * sizeof(uint32_t) +
            v * ls->mask_words * sizeof(il_ls_word) +
-           (v + 1) * sizeof(uint64_t) * 3 + ls->num_stored * (2 * sizeof(il_ls_entry) + sizeof(uint32_t)) +
-           ls->num_cand * sizeof(uint16_t) + ntri * 2 * sizeof(uint32_t) +
+           (v + 1) * sizeof(uint64_t) * 4 + ls->num_stored * sizeof(il_ls_rec) +
+           ncand * sizeof(uint8_t) + ntri * sizeof(il_ls_tri) +
            (uint64_t)ls->num_shafts * sizeof(float);
-}
-
-bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3])
-{
-    for (int i = 0; i < 3; i++) {
-        float x = (v3_get(p, i) - v3_get(ls->lo, i)) * v3_get(ls->inv_vsize, i);
-        if (!(x >= -1e-3f && x <= (float)ls->res[i] + 1e-3f))
-            return false;
-        int k = (int)x; /* truncation: x >= -1e-3 here, and a negative k clamps to 0 */
-        c[i] = (uint32_t)(k < 0 ? 0 : (k >= (int)ls->res[i] ? (int)ls->res[i] - 1 : k));
-    }
-    return true;
-}
-
-void il_ls_cell_box(const il_linespace *ls, const uint32_t c[3], il_vec3 *lo)
-{
-    *lo = v3(ls->lo.x + ls->vsize.x * (float)c[0], ls->lo.y + ls->vsize.y * (float)c[1],
-             ls->lo.z + ls->vsize.z * (float)c[2]);
 }
 
 int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft)
@@ -101,7 +89,7 @@ int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft)
     il_ls_word word = ls->words[w];
     if (!(word.mask & bit))
         return -1;
-    return (int64_t)(word.first_slot + (uint64_t)__builtin_popcountll(word.mask & (bit - 1u)));
+    return (int64_t)(word.first_slot + il_ls_popcount(word.mask & (bit - 1u)));
 }
 
 /* Triangle-box overlap, conservative: bounding boxes and the plane of the
@@ -132,6 +120,28 @@ static bool hull_touches(const hull *h, const tri_local *t, float eps)
         below += s < -eps;
     }
     return above < 8 && below < 8;
+}
+
+/* Zeroed room for `stored` records, 64-byte aligned so that no record
+ * straddles two cache lines.  The lookups read them at random, which on 4
+ * KiB pages costs a TLB miss nearly every time: a large array is asked to
+ * be backed by 2 MiB pages (transparent huge pages, where the kernel has
+ * them; a hint, nothing changes where it does not). */
+static il_ls_rec *alloc_records(uint64_t stored)
+{
+    const size_t huge = (size_t)2 << 20;
+    size_t bytes = ((size_t)stored * sizeof(il_ls_rec) + 63u) / 64u * 64u + 64u;
+    size_t align = bytes >= huge ? huge : 64u;
+    bytes = (bytes + align - 1u) / align * align;
+    il_ls_rec *r = aligned_alloc(align, bytes);
+    if (!r)
+        return NULL;
+#ifdef MADV_HUGEPAGE
+    if (align == huge)
+        madvise(r, bytes, MADV_HUGEPAGE);
+#endif
+    memset(r, 0, bytes);
+    return r;
 }
 
 /* arr with room for at least `need` elements of size elem: doubled as
@@ -317,6 +327,7 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
     ls->vsize = v3(ext.x / (float)ls->res[0], ext.y / (float)ls->res[1], ext.z / (float)ls->res[2]);
     ls->inv_vsize = v3(1.0f / ls->vsize.x, 1.0f / ls->vsize.y, 1.0f / ls->vsize.z);
     ls->n = st->n;
+    ls->patch_scale = v3((float)ls->n / ls->vsize.x, (float)ls->n / ls->vsize.y, (float)ls->n / ls->vsize.z);
     ls->num_shafts = il_ls_num_shafts(st->n);
     ls->mask_words = (ls->num_shafts + 63u) / 64u;
 
@@ -331,7 +342,7 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
     for (uint64_t i = 0; i < cells; i++)
         nv += cell_first[i + 1] > cell_first[i];
     ls->num_voxels = nv;
-    /* At most 36 bytes per shaft (two entries, a list end, two candidates):
+    /* About 36 bytes per shaft (a 32-byte record, a few candidates past it):
      * refuse an upper bound beyond 4 GiB rather than be killed for it. */
     uint64_t bound = (uint64_t)nv * ls->num_shafts;
     if (bound > (1ull << 31) || bound * 36u > (4ull << 30)) {
@@ -391,20 +402,31 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
 
     /* Compact: prefix sums over the voxels, then copy. */
     bool oom = false;
-    uint64_t stored = 0, cands = 0, overflow = 0;
+    uint64_t stored = 0, cands = 0, extra = 0, overflow = 0;
     for (uint32_t v = 0; v < nv; v++) {
         oom |= tmp[v].oom;
         stored += tmp[v].stored;
         cands += tmp[v].num_cands;
+        for (uint32_t i = 0; !tmp[v].oom && i < tmp[v].stored; i++) {
+            uint32_t len = tmp[v].ends[i] - (i ? tmp[v].ends[i - 1] : 0u);
+            extra += len > IL_LS_INLINE ? len - IL_LS_INLINE : 0u;
+        }
     }
     ls->words = malloc((size_t)nv * ls->mask_words * sizeof(il_ls_word) + sizeof(il_ls_word));
     ls->first_shaft = malloc(((size_t)nv + 1) * sizeof(uint64_t));
     ls->cand_base = malloc(((size_t)nv + 1) * sizeof(uint64_t));
-    ls->entries = calloc(2 * stored + 2, sizeof(il_ls_entry));
-    ls->cand_end = malloc(stored * sizeof(uint32_t) + 4);
-    ls->cand = malloc(cands * sizeof(uint16_t) + 2);
-    if (oom || !ls->words || !ls->first_shaft || !ls->cand_base || !ls->entries ||
-        !ls->cand_end || !ls->cand) {
+    ls->recs = alloc_records(stored);
+    ls->cand = malloc(extra * sizeof(uint8_t) + 1);
+    ls->tri_base = malloc(((size_t)nv + 1) * sizeof(uint64_t));
+    uint64_t ntl = 0;
+    for (uint32_t v = 0; ls->tri_base && v <= nv; v++) {
+        ls->tri_base[v] = ntl;
+        uint64_t nt = v < nv ? ls->first_tri[v + 1] - ls->first_tri[v] : 0;
+        ntl += nt <= IL_LS_DENSE ? nt : 0;
+    }
+    ls->tri = malloc((size_t)ntl * sizeof(il_ls_tri) + sizeof(il_ls_tri));
+    if (oom || !ls->words || !ls->first_shaft || !ls->cand_base || !ls->recs || !ls->cand ||
+        !ls->tri_base || !ls->tri) {
         for (uint32_t v = 0; v < nv; v++) {
             free(tmp[v].mask);
             free(tmp[v].ends);
@@ -416,6 +438,14 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
                        "linespace: out of memory for %llu shafts (lower --grid or --linespace-n)",
                        (unsigned long long)stored);
     }
+    for (uint32_t v = 0; v < nv; v++) {
+        uint64_t t0 = ls->first_tri[v], nt = ls->first_tri[v + 1] - t0;
+        for (uint64_t q = 0; nt <= IL_LS_DENSE && q < nt; q++) {
+            uint32_t m = ls->tri_mesh[t0 + q], p = ls->tri_prim[t0 + q];
+            const il_tri_geom *g = &scene->meshes[m].geom[p];
+            ls->tri[ls->tri_base[v] + q] = (il_ls_tri){g->p0, v3_sub(g->p1, g->p0), v3_sub(g->p2, g->p0), m, p};
+        }
+    }
     uint64_t sbase = 0, cbase = 0;
     for (uint32_t v = 0; v < nv; v++) {
         voxel_tmp *t = &tmp[v];
@@ -423,17 +453,28 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
         ls->cand_base[v] = cbase;
         uint64_t slot = sbase;
         for (uint32_t w = 0; w < ls->mask_words; w++) {
-            ls->words[(size_t)v * ls->mask_words + w] = (il_ls_word){t->mask[w], slot};
+            ls->words[(size_t)v * ls->mask_words + w] = (il_ls_word){t->mask[w], slot, {0, 0}};
             slot += (uint64_t)__builtin_popcountll(t->mask[w]);
         }
-        memcpy(ls->cand_end + sbase, t->ends, t->stored * sizeof(uint32_t));
-        memcpy(ls->cand + cbase, t->cands, t->num_cands * sizeof(uint16_t));
+        uint32_t rest = 0; /* the voxel's candidates past the inline ones so far */
         for (uint32_t i = 0; i < t->stored; i++) {
-            uint32_t start = i ? t->ends[i - 1] : 0;
-            overflow += t->cands[start] == IL_LS_OVERFLOW;
+            uint32_t start = i ? t->ends[i - 1] : 0u, len = t->ends[i] - start;
+            il_ls_rec *r = &ls->recs[sbase + i];
+            if (t->cands[start] == IL_LS_OVERFLOW) {
+                r->info = IL_LS_REC_OVERFLOW;
+                overflow++;
+                continue;
+            }
+            r->info = rest | (len << IL_LS_REC_LEN_SHIFT);
+            for (uint32_t q = 0; q < len; q++) {
+                if (q < IL_LS_INLINE)
+                    r->first[q] = (uint8_t)t->cands[start + q];
+                else
+                    ls->cand[cbase + rest++] = (uint8_t)t->cands[start + q];
+            }
         }
         sbase += t->stored;
-        cbase += t->num_cands;
+        cbase += rest;
         free(t->mask);
         free(t->ends);
         free(t->cands);
@@ -441,6 +482,10 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
     ls->first_shaft[nv] = sbase;
     ls->cand_base[nv] = cbase;
     free(tmp);
+    /* The lookups read tri; the triangles' numbers served the build. */
+    free(ls->tri_mesh);
+    free(ls->tri_prim);
+    ls->tri_mesh = ls->tri_prim = NULL;
     ls->num_stored = stored;
     ls->num_cand = cands;
     ls->num_overflow = overflow;

@@ -172,13 +172,15 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
     const uint64_t paths = st->inject_rays;
     const uint64_t num_entries = 2u * ls->num_stored;
     double *acc = calloc(3u * num_entries + 1, sizeof(double));
+    uint8_t *filled = calloc(num_entries + 1, 1); /* entry 2 slot + dir holds a deposit */
     uint64_t num_chunks = (paths + LS_CHUNK - 1) / LS_CHUNK;
     uint64_t round = (uint64_t)threads * 4u;
     if (round > num_chunks)
         round = num_chunks ? num_chunks : 1;
     chunk *ch = calloc((size_t)round, sizeof(chunk));
-    if (!acc || !ch) {
+    if (!acc || !ch || !filled) {
         free(acc);
+        free(filled);
         free(ch);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
@@ -208,7 +210,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
                 a[0] += d->rgb[0];
                 a[1] += d->rgb[1];
                 a[2] += d->rgb[2];
-                ls->entries[d->entry].count++;
+                filled[d->entry] = 1;
             }
         }
     }
@@ -217,6 +219,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
     free(ch);
     if (oom) {
         free(acc);
+        free(filled);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory tracing light paths");
     }
     /* Radiance = sum(Phi l) / (P M).  Without the solid-angle correction
@@ -226,21 +229,28 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
     double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
     for (uint32_t v = 0; v < ls->num_voxels; v++) {
         for (uint32_t w = 0; w < ls->mask_words; w++) {
-            uint64_t m = ls->words[(size_t)v * ls->mask_words + w].mask;
+            il_ls_word *word = &ls->words[(size_t)v * ls->mask_words + w];
+            uint64_t m = word->mask;
             while (m) {
                 uint32_t shaft = w * 64u + (uint32_t)__builtin_ctzll(m);
                 m &= m - 1u;
                 int64_t slot = il_ls_slot(ls, v, shaft);
                 double meas = st->solid_angle ? (double)ls->measure[shaft] : mean_measure;
                 double scale = meas > 0.0 ? 1.0 / ((double)paths * meas) : 0.0;
+                il_ls_rec *r = &ls->recs[slot];
                 for (uint32_t dir = 0; dir < 2; dir++) {
                     uint64_t e = 2u * (uint64_t)slot + dir;
                     for (int c = 0; c < 3; c++)
-                        ls->entries[e].rgb[c] = (float)(acc[3u * e + c] * scale);
+                        r->rgb[dir][c] = (float)(acc[3u * e + c] * scale);
+                    if (filled[e]) {
+                        r->info |= IL_LS_REC_FILLED(dir);
+                        word->filled[dir] |= 1ull << (shaft % 64u);
+                    }
                 }
             }
         }
     }
     free(acc);
+    free(filled);
     return IL_OK;
 }

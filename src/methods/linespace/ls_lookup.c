@@ -3,37 +3,19 @@
  * triangles (Keul et al. 2016, sec. 5: a shaft's candidates are all that a
  * ray inside it can hit in its voxel). */
 #include <math.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "methods/linespace/ls.h"
 #include "trace/trace.h"
 
-/* The Linespace holding p and the line's shaft and direction for light
- * travelling along d; false when there is none. */
-static bool locate(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *voxel, uint32_t *shaft,
-                   uint32_t *dir, float *t_in, float *t_out)
-{
-    uint32_t c[3];
-    if (!il_ls_cell_of(ls, p, c))
-        return false;
-    int32_t v = ls->cell[c[0] + (size_t)ls->res[0] * (c[1] + (size_t)ls->res[1] * c[2])];
-    if (v < 0)
-        return false;
-    il_vec3 lo;
-    il_ls_cell_box(ls, c, &lo);
-    uint32_t fi, pi, fo, po;
-    if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, t_in, t_out))
-        return false;
-    *shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, dir);
-    *voxel = (uint32_t)v;
-    return true;
-}
-
-/* locate, then the stored shaft's slot; -1 when there is none. */
+/* il_ls_find, then the stored shaft's slot; -1 when there is none. */
 static int64_t find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *dir, float *t_in,
                     float *t_out, uint32_t *voxel)
 {
     uint32_t shaft;
-    if (!locate(ls, p, d, voxel, &shaft, dir, t_in, t_out))
+    if (!il_ls_find(ls, p, d, voxel, &shaft, dir, t_in, t_out))
         return -1;
     return il_ls_slot(ls, *voxel, shaft);
 }
@@ -48,17 +30,17 @@ il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, i
     int64_t slot = find(ls, q, v3_neg(w), &dir, &t_in, &t_out, &voxel);
     if (slot < 0)
         return IL_LS_EMPTY;
-    const il_ls_entry *e = &ls->entries[2u * (uint64_t)slot + dir];
-    if (e->count == 0)
+    const il_ls_rec *r = &ls->recs[slot];
+    if (!(r->info & IL_LS_REC_FILLED(dir)))
         return IL_LS_EMPTY;
-    *L = v3(e->rgb[0], e->rgb[1], e->rgb[2]);
+    *L = v3(r->rgb[dir][0], r->rgb[dir][1], r->rgb[dir][2]);
     return IL_LS_FOUND;
 }
 
 /* Moeller & Trumbore 1997: the ray's distance to the triangle, or -1. */
-static float ray_triangle(il_vec3 o, il_vec3 d, const il_tri_geom *g)
+static inline float ray_triangle(il_vec3 o, il_vec3 d, const il_ls_tri *g)
 {
-    il_vec3 e1 = v3_sub(g->p1, g->p0), e2 = v3_sub(g->p2, g->p0);
+    il_vec3 e1 = g->e1, e2 = g->e2;
     il_vec3 pv = v3_cross(d, e2);
     float det = v3_dot(e1, pv);
     if (fabsf(det) < 1e-20f)
@@ -75,31 +57,105 @@ static float ray_triangle(il_vec3 o, il_vec3 d, const il_tri_geom *g)
     return v3_dot(e2, qv) * inv;
 }
 
+/* Whether voxel-local triangle k of the voxel whose triangles start at
+ * `tris` lies on the ray from org along w within (eps, tmax). */
+static inline bool cand_blocks(const il_ls_tri *tris, uint32_t k, il_vec3 org, il_vec3 w, float eps,
+                               float tmax, uint32_t self_mesh, uint32_t self_prim)
+{
+    const il_ls_tri *g = &tris[k];
+    if (g->mesh == self_mesh && g->prim == self_prim)
+        return false;
+    float d = ray_triangle(org, w, g);
+    return d > eps && d < tmax;
+}
+
+#if defined(__SSE2__)
+/* cand_blocks on up to four candidates (idx[0..count-1]) at once:
+ * ray_triangle's operations lane by lane, in its order, so the same
+ * answers; a lane that is past count or the triangle skipped never hits. */
+static inline bool blocks4(const il_ls_tri *tris, const uint8_t *idx, uint32_t count, il_vec3 org,
+                           il_vec3 w, float eps, float tmax, uint32_t self_mesh, uint32_t self_prim)
+{
+    __m128 p[4], a[4], b[4];
+    int valid = 0;
+    for (uint32_t k = 0; k < 4; k++) {
+        const il_ls_tri *g = &tris[idx[k < count ? k : 0]];
+        /* 16-byte loads of the 12-byte vectors: the fourth lane is the
+         * next field's, transposed into a row never used. */
+        p[k] = _mm_loadu_ps(&g->p0.x);
+        a[k] = _mm_loadu_ps(&g->e1.x);
+        b[k] = _mm_loadu_ps(&g->e2.x);
+        valid |= (int)(k < count && !(g->mesh == self_mesh && g->prim == self_prim)) << k;
+    }
+    if (!valid)
+        return false;
+    _MM_TRANSPOSE4_PS(p[0], p[1], p[2], p[3]);
+    _MM_TRANSPOSE4_PS(a[0], a[1], a[2], a[3]);
+    _MM_TRANSPOSE4_PS(b[0], b[1], b[2], b[3]);
+    const __m128 dx = _mm_set1_ps(w.x), dy = _mm_set1_ps(w.y), dz = _mm_set1_ps(w.z);
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+#define MUL _mm_mul_ps
+#define SUB _mm_sub_ps
+#define ADD _mm_add_ps
+    /* pv = d x e2, det = e1 . pv */
+    __m128 pvx = SUB(MUL(dy, b[2]), MUL(dz, b[1])), pvy = SUB(MUL(dz, b[0]), MUL(dx, b[2])),
+           pvz = SUB(MUL(dx, b[1]), MUL(dy, b[0]));
+    __m128 det = ADD(ADD(MUL(a[0], pvx), MUL(a[1], pvy)), MUL(a[2], pvz));
+    __m128 absdet = _mm_andnot_ps(_mm_set1_ps(-0.0f), det);
+    __m128 ok = _mm_cmpnlt_ps(absdet, _mm_set1_ps(1e-20f));
+    __m128 inv = _mm_div_ps(one, det);
+    __m128 tx = SUB(_mm_set1_ps(org.x), p[0]), ty = SUB(_mm_set1_ps(org.y), p[1]),
+           tz = SUB(_mm_set1_ps(org.z), p[2]);
+    __m128 u = MUL(ADD(ADD(MUL(tx, pvx), MUL(ty, pvy)), MUL(tz, pvz)), inv);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpnlt_ps(u, zero), _mm_cmpngt_ps(u, one)));
+    /* qv = tv x e1 */
+    __m128 qx = SUB(MUL(ty, a[2]), MUL(tz, a[1])), qy = SUB(MUL(tz, a[0]), MUL(tx, a[2])),
+           qz = SUB(MUL(tx, a[1]), MUL(ty, a[0]));
+    __m128 v = MUL(ADD(ADD(MUL(dx, qx), MUL(dy, qy)), MUL(dz, qz)), inv);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpnlt_ps(v, zero), _mm_cmpngt_ps(ADD(u, v), one)));
+    __m128 t = MUL(ADD(ADD(MUL(b[0], qx), MUL(b[1], qy)), MUL(b[2], qz)), inv);
+    ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(eps)), _mm_cmplt_ps(t, _mm_set1_ps(tmax))));
+#undef MUL
+#undef SUB
+#undef ADD
+    return (_mm_movemask_ps(ok) & valid) != 0;
+}
+#endif
+
 /* The candidates of stored shaft `slot` of `voxel` against the ray from
  * org along w up to tmax. */
-static bool shaft_blocks(const il_linespace *ls, const il_scene *scene, int64_t slot, uint32_t voxel,
+static bool shaft_blocks(const il_linespace *ls, const il_scene *scene, const il_ls_rec *r, uint32_t voxel,
                          il_vec3 org, il_vec3 w, float eps, float tmax, uint32_t self_mesh,
                          uint32_t self_prim)
 {
     if (!(tmax > eps))
         return false;
-    uint64_t base = ls->cand_base[voxel];
-    uint32_t start = (uint64_t)slot == ls->first_shaft[voxel] ? 0u : ls->cand_end[slot - 1];
-    uint32_t end = ls->cand_end[slot];
-    if (ls->cand[base + start] == IL_LS_OVERFLOW) {
-        il_ray r = {.org = org, .tmin = eps, .dir = w, .tmax = tmax};
-        return il_trace_occluded(scene->tracer, &r);
+    uint32_t info = r->info;
+    if (info & IL_LS_REC_OVERFLOW) {
+        il_ray ray = {.org = org, .tmin = eps, .dir = w, .tmax = tmax};
+        return il_trace_occluded(scene->tracer, &ray);
     }
-    uint64_t t0 = ls->first_tri[voxel];
-    for (uint32_t k = start; k < end; k++) {
-        uint64_t t = t0 + ls->cand[base + k];
-        uint32_t m = ls->tri_mesh[t], p = ls->tri_prim[t];
-        if (m == self_mesh && p == self_prim)
-            continue;
-        float d = ray_triangle(org, w, &scene->meshes[m].geom[p]);
-        if (d > eps && d < tmax)
+    const il_ls_tri *tris = ls->tri + ls->tri_base[voxel];
+    uint32_t len = (info >> IL_LS_REC_LEN_SHIFT) & IL_LS_REC_LEN_MASK;
+    uint32_t in = len < IL_LS_INLINE ? len : IL_LS_INLINE;
+    const uint8_t *rest = ls->cand + ls->cand_base[voxel] + (info & IL_LS_REC_START_MASK);
+#if defined(__SSE2__)
+    _Static_assert(IL_LS_INLINE == 4u, "blocks4 takes the inline candidates at once");
+    if (blocks4(tris, r->first, in, org, w, eps, tmax, self_mesh, self_prim))
+        return true;
+    for (uint32_t k = 0; k + IL_LS_INLINE < len; k += 4u) {
+        uint32_t m = len - IL_LS_INLINE - k;
+        if (blocks4(tris, rest + k, m < 4u ? m : 4u, org, w, eps, tmax, self_mesh, self_prim))
             return true;
     }
+#else
+    for (uint32_t k = 0; k < in; k++)
+        if (cand_blocks(tris, r->first[k], org, w, eps, tmax, self_mesh, self_prim))
+            return true;
+    for (uint32_t k = 0; k + IL_LS_INLINE < len; k++)
+        if (cand_blocks(tris, rest[k], org, w, eps, tmax, self_mesh, self_prim))
+            return true;
+#endif
     return false;
 }
 
@@ -114,7 +170,7 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
         return false;       /* no geometry in the shaft */
     /* Up to the voxel's face, short of it: a wall lying in the face is
      * where the shaft's light comes from, not an occluder. */
-    return shaft_blocks(ls, scene, slot, voxel, org, w, eps, t_out - eps, self_mesh, self_prim);
+    return shaft_blocks(ls, scene, &ls->recs[slot], voxel, org, w, eps, t_out - eps, self_mesh, self_prim);
 }
 
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr)
@@ -125,7 +181,7 @@ void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *p
     float eps = 1e-4f * v3_max_comp(ls->vsize);
     float t_out;
     pr->slot = -1;
-    pr->found = locate(ls, v3_fma(x, w, eps), v3_neg(w), &pr->voxel, &pr->shaft, &pr->dir, &pr->t_in, &t_out);
+    pr->found = il_ls_find(ls, v3_fma(x, w, eps), v3_neg(w), &pr->voxel, &pr->shaft, &pr->dir, &pr->t_in, &t_out);
     if (pr->found)
         __builtin_prefetch(&ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u]);
 }
@@ -134,29 +190,36 @@ void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *
 {
     if (!pr->found)
         return;
-    pr->slot = il_ls_slot(ls, pr->voxel, pr->shaft);
-    if (pr->slot < 0)
+    /* An entry without deposits reads as nothing: its record is not
+     * needed (nor fetched). */
+    const il_ls_word *word = &ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u];
+    uint64_t bit = 1ull << (pr->shaft % 64u);
+    if (!(word->filled[pr->dir] & bit))
         return;
-    __builtin_prefetch(&ls->entries[2u * (uint64_t)pr->slot + pr->dir]);
-    if (occlusion_test)
-        __builtin_prefetch(&ls->cand_end[pr->slot > 0 ? pr->slot - 1 : 0]);
+    pr->slot = (int64_t)(word->first_slot + il_ls_popcount(word->mask & (bit - 1u)));
+    (void)occlusion_test; /* the record holds the list's start too */
+    __builtin_prefetch(&ls->recs[pr->slot]);
 }
 
 il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
                                      il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
-                                     uint32_t self_prim, il_vec3 *L)
+                                     uint32_t self_prim, il_vec3 *L, il_ray *ray)
 {
     if (pr->slot < 0)
         return IL_LS_EMPTY;
     /* The entry first, the occlusion test only for an entry holding light
      * (an empty entry gives nothing either way). */
-    const il_ls_entry *e = &ls->entries[2u * (uint64_t)pr->slot + pr->dir];
-    if (e->count == 0)
+    const il_ls_rec *r = &ls->recs[pr->slot];
+    if (!(r->info & IL_LS_REC_FILLED(pr->dir)))
         return IL_LS_EMPTY;
-    float eps = 1e-4f * v3_max_comp(ls->vsize);
-    if (occlusion_test &&
-        shaft_blocks(ls, scene, pr->slot, pr->voxel, x, w, eps, -pr->t_in, self_mesh, self_prim))
+    float eps = 1e-4f * v3_max_comp(ls->vsize), tmax = -pr->t_in;
+    *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
+    if (occlusion_test && ray && (r->info & IL_LS_REC_OVERFLOW) && tmax > eps) {
+        /* shaft_blocks's ray, for the caller to trace. */
+        *ray = (il_ray){.org = x, .tmin = eps, .dir = w, .tmax = tmax};
+        return IL_LS_TRACE;
+    }
+    if (occlusion_test && shaft_blocks(ls, scene, r, pr->voxel, x, w, eps, tmax, self_mesh, self_prim))
         return IL_LS_OCCLUDED;
-    *L = v3(e->rgb[0], e->rgb[1], e->rgb[2]);
     return IL_LS_FOUND;
 }

@@ -30,6 +30,7 @@
 #include "core/sampling.h"
 #include "methods/camera_pass.h"
 #include "methods/camera_wave.h"
+#include "methods/diffuse_wave.h"
 #include "methods/linespace/ls.h"
 #include "scene/bsdf.h"
 #include "scene/direct.h"
@@ -142,11 +143,15 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
 
 /* The vertex where p->ray ended (hit NULL: it left the scene).  u: its four
  * pairs, always drawn in this order (a fifth for the blur is drawn here
- * when a lookup is made), and cos_dir the cosine warp of u[2].  Returns
+ * when a lookup is made), and cos_dir the cosine warp of u[2]; dw, when
+ * not NULL, what il_diffuse_wave made of a Lambertian vertex with them
+ * (its light sample, as il_direct_light_sample takes it, and its BSDF
+ * sample, bit for bit), so that only the rest is done here.  Returns
  * true when the path goes on along p->ray; either way the caller then
  * resolves the vertex with path_finish_vertex. */
 static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, const il_surface *surf,
-                         const il_vec2 *u, const il_vec3 *cos_dir, il_sampler *smp, ls_counts *cnt)
+                         const il_vec2 *u, const il_vec3 *cos_dir, const il_diffuse_out *dw,
+                         il_sampler *smp, ls_counts *cnt)
 {
     const il_scene *s = m->scene;
     p->shadow = p->read = false;
@@ -161,10 +166,14 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         p->L = v3_add(p->L, v3_mul(p->beta, il_emitted_radiance(mat, surf->ng, wo)));
     if (p->depth >= m->set.max_depth)
         return LS_STOP;
+    /* A Lambertian vertex il_diffuse_wave made needs no BSDF of its own:
+     * lookup_probability is 1 for it. */
+    bool made = dw && dw->next_done;
     il_bsdf b;
-    il_bsdf_init(&b, s, surf);
+    if (!made || !dw->nee_done)
+        il_bsdf_init(&b, s, surf);
     il_bsdf_sample bs;
-    if (il_bsdf_is_delta(&b)) {
+    if (!made && il_bsdf_is_delta(&b)) {
         if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
             !il_sides_agree(surf, wo, bs.wi))
             return LS_STOP;
@@ -172,16 +181,31 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         p->specular = true;
     } else {
         il_vec3 unblocked;
-        if (il_direct_light_sample(s, surf, &b, wo, u[0].x, u[1], &p->shadow_ray, &unblocked)) {
+        if (made && dw->nee_done) {
+            if (dw->shadow) {
+                p->shadow = true;
+                p->shadow_ray = dw->shadow_ray;
+                p->shadow_L = v3_mul(p->beta, dw->shadow_L);
+                p->rays++;
+            }
+        } else if (il_direct_light_sample(s, surf, &b, wo, u[0].x, u[1], &p->shadow_ray, &unblocked)) {
             p->shadow = true;
             p->shadow_L = v3_mul(p->beta, unblocked);
             p->rays++;
         }
-        if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
-            !il_sides_agree(surf, wo, bs.wi))
-            return LS_STOP;
-        il_vec3 next = v3_mul(p->beta, bs.weight);
-        if (u[3].x < lookup_probability(m, &b)) {
+        il_vec3 next;
+        if (made) {
+            if (!dw->next_ok)
+                return LS_STOP;
+            bs.wi = dw->next_ray.dir;
+            next = dw->next_beta;
+        } else {
+            if (!il_bsdf_sample_dir_cos(&b, wo, u[0].y, u[2], cos_dir, &bs) ||
+                !il_sides_agree(surf, wo, bs.wi))
+                return LS_STOP;
+            next = v3_mul(p->beta, bs.weight);
+        }
+        if (u[3].x < (made ? 1.0f : lookup_probability(m, &b))) {
             cnt->lookups++;
             p->x = surf->p;
             p->ng = surf->ng;
@@ -244,9 +268,17 @@ typedef struct ls_wave {
     uint32_t slot[LS_WAVE];        /* [j]: its row of u, for the drawing paths */
     uint32_t looking[LS_WAVE];     /* the paths with a pending lookup */
     il_ls_probe probe[LS_WAVE];    /* [k] of looking */
+    il_ls_lookup_status status[LS_WAVE]; /* [k] of looking */
+    il_vec3 Li[LS_WAVE];           /* [k] of looking */
+    uint32_t tracing[LS_WAVE];     /* the k whose occlusion test is a ray */
+    il_ray occ_rays[LS_WAVE];      /* their rays */
+    bool occ_hit[LS_WAVE];
     il_vec2 u[LS_WAVE * LS_PAIRS];
     il_vec2 u_cos[LS_WAVE];
     il_vec3 cos_dir[LS_WAVE];
+    il_diffuse_in diffuse_in[LS_WAVE];     /* [k] of drawing */
+    il_diffuse_out diffuse_out[LS_WAVE];   /* [k] of drawing */
+    il_diffuse_out *diffuse_ptr[LS_WAVE];
 } ls_wave;
 
 static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, ls_counts *cnt)
@@ -273,6 +305,7 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             uint32_t j = w->active[a];
             if (w->hits[a].mesh != IL_HIT_NONE && w->path[j].depth < m->set.max_depth) {
                 w->slot[j] = num_drawing;
+                w->diffuse_in[num_drawing].surf = &w->surf[a];
                 w->drawing[num_drawing++] = j;
             }
         }
@@ -280,6 +313,19 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         for (uint32_t k = 0; k < num_drawing; k++)
             w->u_cos[k] = w->u[k * LS_PAIRS + 2];
         il_sample_cosine_hemisphere_n(w->u_cos, w->cos_dir, num_drawing);
+        /* The Lambertian vertices' light samples and next directions,
+         * eight at a time. */
+        for (uint32_t k = 0; k < num_drawing; k++) {
+            const ls_path *p = &w->path[w->drawing[k]];
+            il_diffuse_in *in = &w->diffuse_in[k];
+            in->wo = v3_neg(p->ray.dir);
+            in->beta = p->beta;
+            in->u_select = w->u[k * LS_PAIRS].x;
+            in->u_light = w->u[k * LS_PAIRS + 1];
+            in->cos_dir = w->cos_dir[k];
+            w->diffuse_ptr[k] = &w->diffuse_out[k];
+        }
+        il_diffuse_wave(m->scene, w->diffuse_in, w->diffuse_ptr, num_drawing, IL_DIFFUSE_NEE_PLAIN);
 
         uint32_t num_shadow = 0, num_looking = 0, still = 0;
         for (uint32_t a = 0; a < num_active; a++) {
@@ -290,7 +336,8 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             uint32_t k = drawing ? w->slot[j] : 0;
             ls_step next = path_step(m, p, hit ? &w->hits[a] : NULL, &w->surf[a],
                                      drawing ? &w->u[k * LS_PAIRS] : NULL,
-                                     drawing ? &w->cos_dir[k] : NULL, &w->smp[j], cnt);
+                                     drawing ? &w->cos_dir[k] : NULL, drawing ? &w->diffuse_out[k] : NULL,
+                                     &w->smp[j], cnt);
             w->occluded[j] = false;
             if (p->shadow) {
                 w->shadowed[num_shadow] = j;
@@ -311,13 +358,26 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         }
         for (uint32_t k = 0; k < num_looking; k++)
             il_ls_probe_slot(m->ls, occlusion_test, &w->probe[k]);
+        uint32_t num_tracing = 0;
+        for (uint32_t k = 0; k < num_looking; k++) {
+            const ls_path *p = &w->path[w->looking[k]];
+            w->Li[k] = v3s(0.0f);
+            w->status[k] = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, occlusion_test,
+                                            p->self_mesh, p->self_prim, &w->Li[k],
+                                            &w->occ_rays[num_tracing]);
+            if (w->status[k] == IL_LS_TRACE)
+                w->tracing[num_tracing++] = k;
+        }
+        /* The occlusion tests of shafts without candidate lists, as one
+         * stream. */
+        if (num_tracing > 0) {
+            il_trace_occluded_n(tr, w->occ_rays, w->occ_hit, num_tracing);
+            for (uint32_t t = 0; t < num_tracing; t++)
+                w->status[w->tracing[t]] = w->occ_hit[t] ? IL_LS_OCCLUDED : IL_LS_FOUND;
+        }
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
-            ls_path *p = &w->path[j];
-            il_vec3 Li = v3s(0.0f);
-            il_ls_lookup_status r = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, occlusion_test,
-                                                     p->self_mesh, p->self_prim, &Li);
-            if (path_after_lookup(m, p, r, Li, cnt) == LS_GO)
+            if (path_after_lookup(m, &w->path[j], w->status[k], w->Li[k], cnt) == LS_GO)
                 w->active[still++] = j;
         }
         if (num_shadow > 0) {

@@ -1,0 +1,172 @@
+/* The Linespace lookup's fast paths (methods/linespace/ls_shaft.c,
+ * ls_lookup.c, ls_build.c) against the plain definitions:
+ * - il_ls_find gives exactly what il_ls_cell_of, il_ls_cell_box,
+ *   il_ls_locate and il_ls_shaft_index give in turn (voxel, shaft,
+ *   direction, distances), for random points and directions, directions
+ *   along an axis or in an axis plane, and points on voxel faces;
+ * - the in-shaft occlusion test, which reads each shaft's candidate list
+ *   from its 32-byte record (the first candidates inline, the rest in the
+ *   voxel's array), agrees with a brute-force test of the ray against every
+ *   triangle of the scene up to the voxel's face, on the Cornell box at
+ *   two grids and N (short and long lists). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "check.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "methods/linespace/ls.h"
+#include "scene_build.h"
+
+static float rnd(il_pcg32 *r) { return il_pcg32_float(r); }
+
+/* Moeller & Trumbore 1997, in double: the distance along d, or -1; *edge
+ * set when the line passes so close to an edge (barycentric 1e-5) that
+ * rounding may decide. */
+static double hit_dist(il_vec3 o, il_vec3 d, const il_tri_geom *g, bool *edge)
+{
+    double e1[3] = {g->p1.x - g->p0.x, g->p1.y - g->p0.y, g->p1.z - g->p0.z};
+    double e2[3] = {g->p2.x - g->p0.x, g->p2.y - g->p0.y, g->p2.z - g->p0.z};
+    double dd[3] = {d.x, d.y, d.z}, tv[3] = {o.x - g->p0.x, o.y - g->p0.y, o.z - g->p0.z};
+    double pv[3] = {dd[1] * e2[2] - dd[2] * e2[1], dd[2] * e2[0] - dd[0] * e2[2], dd[0] * e2[1] - dd[1] * e2[0]};
+    double det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
+    *edge = false;
+    if (fabs(det) < 1e-20)
+        return -1.0;
+    double u = (tv[0] * pv[0] + tv[1] * pv[1] + tv[2] * pv[2]) / det;
+    double qv[3] = {tv[1] * e1[2] - tv[2] * e1[1], tv[2] * e1[0] - tv[0] * e1[2], tv[0] * e1[1] - tv[1] * e1[0]};
+    double v = (dd[0] * qv[0] + dd[1] * qv[1] + dd[2] * qv[2]) / det;
+    const double tol = 1e-5;
+    *edge = u > -tol && v > -tol && u + v < 1.0 + tol && (u < tol || v < tol || u + v > 1.0 - tol);
+    if (u < 0.0 || v < 0.0 || u + v > 1.0)
+        return -1.0;
+    return (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) / det;
+}
+
+/* A random direction; one in four along an axis, one in four in an axis
+ * plane (the slab method's parallel case). */
+static il_vec3 random_dir(il_pcg32 *r)
+{
+    il_vec3 d = il_sample_uniform_sphere(v2(rnd(r), rnd(r)));
+    uint32_t kind = il_pcg32_next(r) % 4u, axis = il_pcg32_next(r) % 3u;
+    float c[3] = {d.x, d.y, d.z};
+    if (kind == 0) {
+        float s = c[axis] < 0.0f ? -1.0f : 1.0f;
+        c[0] = c[1] = c[2] = 0.0f;
+        c[axis] = s;
+    } else if (kind == 1) {
+        c[axis] = 0.0f;
+    }
+    return v3_normalize(v3(c[0], c[1], c[2]));
+}
+
+static void check_find(const il_linespace *ls, il_pcg32 *r)
+{
+    uint32_t count = 0, bad = 0;
+    for (uint32_t i = 0; i < 200000; i++) {
+        float u[3] = {rnd(r), rnd(r), rnd(r)};
+        if (i % 4u == 0) /* on a voxel face */
+            u[i % 3u] = (float)(il_pcg32_next(r) % (ls->res[i % 3u] + 1u)) / (float)ls->res[i % 3u];
+        il_vec3 p = v3(ls->lo.x + (ls->hi.x - ls->lo.x) * u[0], ls->lo.y + (ls->hi.y - ls->lo.y) * u[1],
+                       ls->lo.z + (ls->hi.z - ls->lo.z) * u[2]);
+        il_vec3 d = random_dir(r);
+        uint32_t c[3], fi, pi, fo, po, dir = 0, shaft = 0;
+        float tin = 0.0f, tout = 0.0f;
+        bool want = il_ls_cell_of(ls, p, c);
+        int32_t v = -1;
+        if (want) {
+            v = ls->cell[c[0] + ls->res[0] * (c[1] + ls->res[1] * c[2])];
+            il_vec3 lo;
+            il_ls_cell_box(ls, c, &lo);
+            want = v >= 0 && il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout);
+            if (want)
+                shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, &dir);
+        }
+        uint32_t voxel2 = 0, shaft2 = 0, dir2 = 0;
+        float tin2 = 0.0f, tout2 = 0.0f;
+        bool got = il_ls_find(ls, p, d, &voxel2, &shaft2, &dir2, &tin2, &tout2);
+        count += want;
+        if (got != want || (want && ((int32_t)voxel2 != v || shaft2 != shaft || dir2 != dir ||
+                                     tin2 != tin || tout2 != tout)))
+            bad++;
+    }
+    printf("il_ls_find: %u of 200000 lines in a Linespace, %u differ from the plain chain\n", count, bad);
+    CHECK(count > 10000);
+    CHECK(bad == 0);
+}
+
+static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg32 *r)
+{
+    il_ls_settings set = {.grid = grid, .n = n};
+    il_linespace ls;
+    if (il_ls_build(s, &set, 1, &ls, &g_err) != IL_OK) {
+        CHECK(false);
+        return;
+    }
+    check_find(&ls, r);
+    /* Lists past the inline candidates are what this exercises. */
+    uint64_t long_lists = 0;
+    for (uint64_t k = 0; k < ls.num_stored; k++) {
+        uint32_t info = ls.recs[k].info;
+        long_lists += !(info & IL_LS_REC_OVERFLOW) &&
+                      ((info >> IL_LS_REC_LEN_SHIFT) & IL_LS_REC_LEN_MASK) > IL_LS_INLINE;
+    }
+    float eps = 1e-4f * v3_max_comp(ls.vsize);
+    uint32_t tests = 0, blocked = 0, bad = 0;
+    for (uint32_t i = 0; i < 100000; i++) {
+        uint32_t m = il_pcg32_next(r) % s->num_meshes;
+        uint32_t t = il_pcg32_next(r) % s->meshes[m].num_triangles;
+        const il_tri_geom *g = &s->meshes[m].geom[t];
+        float a = rnd(r), b = rnd(r);
+        if (a + b > 1.0f) {
+            a = 1.0f - a;
+            b = 1.0f - b;
+        }
+        il_vec3 x = v3_fma(v3_fma(g->p0, v3_sub(g->p1, g->p0), a), v3_sub(g->p2, g->p0), b);
+        il_vec3 w = il_sample_uniform_sphere(v2(rnd(r), rnd(r)));
+        uint32_t voxel, shaft, dir;
+        float tin, tout;
+        if (!il_ls_find(&ls, v3_fma(x, w, eps), w, &voxel, &shaft, &dir, &tin, &tout))
+            continue;
+        /* Brute force, up to the face short of eps (il_ls_occluded's range);
+         * a hit within a margin of either end or of a triangle's edge is
+         * left out, rounding may decide it. */
+        double tmax = (double)tout - eps, margin = 1e-4 * eps;
+        bool want = false, unsure = false;
+        for (uint32_t mm = 0; mm < s->num_meshes; mm++)
+            for (uint32_t tt = 0; tt < s->meshes[mm].num_triangles; tt++) {
+                if (mm == m && tt == t)
+                    continue;
+                bool edge;
+                double h = hit_dist(x, w, &s->meshes[mm].geom[tt], &edge);
+                want |= h > eps && h < tmax;
+                unsure |= fabs(h - eps) < margin || fabs(h - tmax) < margin || edge;
+            }
+        if (unsure)
+            continue;
+        bool got = il_ls_occluded(&ls, s, x, w, m, t);
+        tests++;
+        blocked += want;
+        bad += got != want;
+    }
+    printf("grid %u, N %u: %llu of %llu shafts with lists past the record; %u occlusion tests, %u "
+           "blocked, %u differ from brute force\n",
+           grid, n, (unsigned long long)long_lists, (unsigned long long)ls.num_stored, tests, blocked, bad);
+    CHECK(long_lists > 0);
+    CHECK(tests > 50000);
+    CHECK(blocked > 1000);
+    CHECK(bad == 0);
+    il_ls_free(&ls);
+}
+
+int main(void)
+{
+    il_scene *s = load_committed("cornell");
+    if (!s)
+        return check_report();
+    il_pcg32 r = il_pcg32_seed(17, 3);
+    check_occlusion(s, 8, 4, &r);
+    check_occlusion(s, 3, 2, &r);
+    il_scene_release(s);
+    return check_report();
+}
