@@ -17,6 +17,7 @@
  * path tracer's wavefront to its one-path-at-a-time estimator.  Comparisons
  * keep C's treatment of NaN (ordered for <, >, <=, >=; unordered for !=). */
 #include <float.h>
+#include <math.h>
 
 #include "methods/diffuse_wave.h"
 
@@ -35,7 +36,8 @@ enum { LANES = 8 };
 
 /* One batch of lanes, structure of arrays.  The vertex: the shading point
  * p, its geometric and shading normals, wo, the throughput, the diffuse
- * albedo and the cosine-distributed direction drawn for it.  Its light
+ * albedo, a Phong surface's specular colour, exponent and diffuse-lobe
+ * probability, and the cosine-distributed direction drawn for it.  Its light
  * sample (lanes with `nee` set): the triangle (vertices, normal, area,
  * selection probability, radiance, sidedness) and the point sample u.
  * Outputs: whether a shadow ray is cast, the ray and the radiance it
@@ -43,6 +45,7 @@ enum { LANES = 8 };
 typedef struct lanes {
     float p[3][LANES], ng[3][LANES], ns[3][LANES], wo[3][LANES], beta[3][LANES], kd[3][LANES];
     float cos_dir[3][LANES];
+    float is_phong[LANES], ks[3][LANES], expo[LANES], pd[LANES]; /* Phong lanes' il_bsdf */
     float q0[3][LANES], q1[3][LANES], q2[3][LANES], lng[3][LANES], area[LANES], pmf[LANES];
     float rad[3][LANES], two_sided[LANES], is_point[LANES], is_dir[LANES], ux[LANES], uy[LANES];
     float cast[LANES], org[3][LANES], dir[3][LANES], shadow_L[3][LANES];
@@ -117,6 +120,49 @@ IL_AVX2 static inline v3x8 offset_origin(__m256 epsilon, v3x8 p, v3x8 n, v3x8 di
     return add3(p, scale3(n, s));
 }
 
+/* il_frame_from_normal (Duff et al. 2017, "Building an Orthonormal Basis,
+ * Revisited"): the tangents s and t of the frame about n. */
+IL_AVX2 static inline void frame8(v3x8 n, v3x8 *fs, v3x8 *ft)
+{
+    const __m256 one = _mm256_set1_ps(1.0f), minus = _mm256_set1_ps(-0.0f);
+    __m256 sign = _mm256_or_ps(_mm256_and_ps(n.z, minus), one);
+    __m256 a = _mm256_div_ps(_mm256_set1_ps(-1.0f), _mm256_add_ps(sign, n.z));
+    __m256 b = _mm256_mul_ps(_mm256_mul_ps(n.x, n.y), a);
+    *fs = (v3x8){_mm256_add_ps(one, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(sign, n.x), n.x), a)),
+                 _mm256_mul_ps(sign, b), _mm256_mul_ps(_mm256_xor_ps(sign, minus), n.x)};
+    *ft = (v3x8){b, _mm256_add_ps(sign, _mm256_mul_ps(_mm256_mul_ps(n.y, n.y), a)), _mm256_xor_ps(n.y, minus)};
+}
+
+/* opaque_eval_local's Phong terms for the Phong lanes (the others keep f
+ * and pdf): wi_l and wo_l in the local frame flipped to wo's side, the lobe
+ * cos^n of the angle between wi_l and wo_l's mirror image (powf per lane,
+ * the scalar code's own call), f += ks (n+2)/(2 pi) lobe, and the pdf mixed
+ * with the lobe's by the diffuse-lobe probability (Lafortune & Willems
+ * 1994; one-sample MIS over lobes, Veach 1997 9.2.4). */
+IL_AVX2 static void phong8(lanes *l, v3x8 wi_l, __m256 wo_lx, __m256 wo_ly, __m256 wo_lz, v3x8 *f,
+                           __m256 *pdf)
+{
+    const __m256 one = _mm256_set1_ps(1.0f), minus = _mm256_set1_ps(-0.0f);
+    const __m256 inv_2pi = _mm256_set1_ps(IL_INV_2PI);
+    __m256 cos_alpha = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(wi_l.x, _mm256_xor_ps(wo_lx, minus)),
+                                                   _mm256_mul_ps(wi_l.y, _mm256_xor_ps(wo_ly, minus))),
+                                     _mm256_mul_ps(wi_l.z, wo_lz));
+    float ca[LANES], lobe[LANES];
+    _mm256_storeu_ps(ca, cos_alpha);
+    for (int k = 0; k < LANES; k++)
+        lobe[k] = l->is_phong[k] != 0.0f && ca[k] > 0.0f ? powf(il_minf(ca[k], 1.0f), l->expo[k]) : 0.0f;
+    __m256 lb = _mm256_loadu_ps(lobe), n = _mm256_loadu_ps(l->expo), pd = _mm256_loadu_ps(l->pd);
+    __m256 is_phong = _mm256_loadu_ps(l->is_phong);
+    __m256 kf = _mm256_mul_ps(_mm256_mul_ps(_mm256_add_ps(n, _mm256_set1_ps(2.0f)), inv_2pi), lb);
+    v3x8 fp = add3(*f, scale3(load3(l->ks), kf));
+    __m256 pp = _mm256_add_ps(_mm256_mul_ps(pd, *pdf),
+                              _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(one, pd), _mm256_add_ps(n, one)),
+                                                          inv_2pi),
+                                            lb));
+    *f = sel3(is_phong, fp, *f);
+    *pdf = sel(is_phong, pp, *pdf);
+}
+
 /* The light sample of eight lanes: the next-event block of il_pt_step_at
  * (IL_DIFFUSE_NEE_MIS) or il_direct_light_sample (IL_DIFFUSE_NEE_PLAIN). */
 IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
@@ -179,8 +225,15 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     __m256 wi_z = sel(flip, _mm256_xor_ps(wi_ns, _mm256_set1_ps(-0.0f)), wi_ns);
     __m256 lit = _mm256_and_ps(_mm256_and_ps(gt0(g), _mm256_cmp_ps(wo_z, bsdf_eps, _CMP_GT_OQ)),
                                _mm256_cmp_ps(wi_z, bsdf_eps, _CMP_NLE_UQ));
-    v3x8 f = sel3(lit, scale3(load3(l->kd), inv_pi), (v3x8){zero, zero, zero});
-    __m256 bsdf_pdf = sel(_mm256_and_ps(lit, gt0(wi_z)), _mm256_mul_ps(wi_z, inv_pi), zero);
+    v3x8 f = scale3(load3(l->kd), inv_pi);
+    __m256 bsdf_pdf = sel(gt0(wi_z), _mm256_mul_ps(wi_z, inv_pi), zero);
+    if (_mm256_movemask_ps(_mm256_loadu_ps(l->is_phong))) {
+        v3x8 fs, ft;
+        frame8(ns, &fs, &ft);
+        phong8(l, (v3x8){dot3(wi, fs), dot3(wi, ft), wi_z}, dot3(wo, fs), dot3(wo, ft), wo_z, &f, &bsdf_pdf);
+    }
+    f = sel3(lit, f, (v3x8){zero, zero, zero});
+    bsdf_pdf = sel(lit, bsdf_pdf, zero);
     __m256 cos_i = fabs8(wi_ns);
     ok = _mm256_andnot_ps(is_zero3(f), ok);
     __m256 w = one;
@@ -209,21 +262,17 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     _mm256_storeu_ps(l->cast, ok);
 }
 
-/* The BSDF sample of eight Lambertian lanes: the shading frame
- * (il_frame_from_normal), il_bsdf_sample_dir_cos with the drawn cosine
- * direction, il_sides_agree, the throughput and the next ray. */
+/* The BSDF sample of eight lanes: the shading frame, il_bsdf_sample_dir_cos
+ * with the drawn cosine direction (a Phong lane's diffuse lobe: the driver
+ * leaves its glossy lobe to the scalar code), il_sides_agree, the
+ * throughput and the next ray. */
 IL_AVX2 static void next8(lanes *l, float epsilon)
 {
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), minus = _mm256_set1_ps(-0.0f);
+    const __m256 zero = _mm256_setzero_ps(), minus = _mm256_set1_ps(-0.0f);
     const __m256 bsdf_eps = _mm256_set1_ps(1e-7f), inv_pi = _mm256_set1_ps(IL_INV_PI);
     v3x8 p = load3(l->p), ng = load3(l->ng), n = load3(l->ns), wo = load3(l->wo);
-    /* il_frame_from_normal (Duff et al. 2017) */
-    __m256 sign = _mm256_or_ps(_mm256_and_ps(n.z, minus), one);
-    __m256 a = _mm256_div_ps(_mm256_set1_ps(-1.0f), _mm256_add_ps(sign, n.z));
-    __m256 b = _mm256_mul_ps(_mm256_mul_ps(n.x, n.y), a);
-    v3x8 fs = {_mm256_add_ps(one, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(sign, n.x), n.x), a)),
-               _mm256_mul_ps(sign, b), _mm256_mul_ps(_mm256_xor_ps(sign, minus), n.x)};
-    v3x8 ft = {b, _mm256_add_ps(sign, _mm256_mul_ps(_mm256_mul_ps(n.y, n.y), a)), _mm256_xor_ps(n.y, minus)};
+    v3x8 fs, ft;
+    frame8(n, &fs, &ft);
     /* opaque_local: wo above the frame flipped to its side */
     __m256 wo_z = dot3(wo, n);
     __m256 flip = _mm256_cmp_ps(wo_z, zero, _CMP_LT_OQ);
@@ -234,6 +283,8 @@ IL_AVX2 static void next8(lanes *l, float epsilon)
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(wl.z, bsdf_eps, _CMP_NLE_UQ));
     v3x8 f = scale3(load3(l->kd), inv_pi);
     __m256 pdf = sel(gt0(wl.z), _mm256_mul_ps(wl.z, inv_pi), zero);
+    if (_mm256_movemask_ps(_mm256_loadu_ps(l->is_phong)))
+        phong8(l, wl, dot3(wo, fs), dot3(wo, ft), wo_z, &f, &pdf);
     ok = _mm256_and_ps(ok, gt0(pdf));
     __m256 z = sel(flip, _mm256_xor_ps(wl.z, minus), wl.z);
     v3x8 wi = add3(add3(scale3(fs, wl.x), scale3(ft, wl.y)), scale3(n, z));
@@ -269,8 +320,22 @@ static void fill_vertex(const il_scene *s, const il_diffuse_in *in, lanes *l, in
     put3(l->wo, k, in->wo);
     put3(l->beta, k, in->beta);
     const il_material *m = surf->material;
-    il_vec3 kd = m->diffuse_texture ? il_material_diffuse(s, m, surf->uv) : m->diffuse;
-    put3(l->kd, k, v3_max(kd, v3s(0.0f))); /* il_bsdf_init's */
+    if (m->type == IL_MATERIAL_PHONG) {
+        il_bsdf b; /* its albedos scaled for energy conservation, its lobe choice */
+        il_bsdf_init(&b, s, surf);
+        put3(l->kd, k, b.diffuse);
+        put3(l->ks, k, b.specular);
+        l->expo[k] = b.exponent;
+        l->pd[k] = b.diffuse_prob;
+        l->is_phong[k] = -1.0f; /* a mask: the sign bit */
+    } else {
+        il_vec3 kd = m->diffuse_texture ? il_material_diffuse(s, m, surf->uv) : m->diffuse;
+        put3(l->kd, k, v3_max(kd, v3s(0.0f))); /* il_bsdf_init's */
+        put3(l->ks, k, v3s(0.0f));
+        l->expo[k] = 0.0f;
+        l->pd[k] = 1.0f;
+        l->is_phong[k] = 0.0f;
+    }
     put3(l->cos_dir, k, in->cos_dir);
 }
 
@@ -300,20 +365,21 @@ static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes
 /* Lane k takes lane 0's inputs: the unused lanes of a short batch. */
 static void copy_lane0(lanes *l, int k)
 {
-    float(*v3s_[])[LANES] = {l->p, l->ng, l->ns, l->wo, l->beta, l->kd, l->cos_dir,
+    float(*v3s_[])[LANES] = {l->p, l->ng, l->ns, l->wo, l->beta, l->kd, l->ks, l->cos_dir,
                              l->q0, l->q1, l->q2, l->lng, l->rad};
     for (size_t i = 0; i < sizeof v3s_ / sizeof v3s_[0]; i++)
         for (int c = 0; c < 3; c++)
             v3s_[i][c][k] = v3s_[i][c][0];
     l->area[k] = l->area[0], l->pmf[k] = l->pmf[0], l->two_sided[k] = l->two_sided[0];
     l->is_point[k] = l->is_point[0], l->is_dir[k] = l->is_dir[0];
+    l->is_phong[k] = l->is_phong[0], l->expo[k] = l->expo[0], l->pd[k] = l->pd[0];
     l->ux[k] = l->ux[0], l->uy[k] = l->uy[0];
 }
 
 static il_vec3 get3(const float a[3][LANES], int k) { return v3(a[0][k], a[1][k], a[2][k]); }
 
 /* Lane k's results. */
-static void store_lane(const lanes *l, il_lrec_kind light, il_diffuse_out *out, int k)
+static void store_lane(const lanes *l, il_lrec_kind light, bool next, il_diffuse_out *out, int k)
 {
     out->nee_done = light != IL_LREC_NONE;
     out->shadow = out->nee_done && l->cast[k] != 0.0f;
@@ -324,7 +390,7 @@ static void store_lane(const lanes *l, il_lrec_kind light, il_diffuse_out *out, 
                                    .tmax = tmax};
         out->shadow_L = get3(l->shadow_L, k);
     }
-    out->next_done = true;
+    out->next_done = next;
     out->next_ok = l->next_ok[k] != 0.0f;
     out->next_beta = get3(l->next_beta, k);
     out->next_pdf = l->next_pdf[k];
@@ -338,13 +404,17 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in
     lanes l;
     uint32_t lane_vertex[LANES];
     il_lrec_kind lane_light[LANES];
+    bool lane_next[LANES];
     float epsilon = il_trace_epsilon(s->tracer);
     int k = 0;
     for (uint32_t i = 0; i <= n; i++) {
         if (i < n) {
-            if (in[i].surf->material->type != IL_MATERIAL_DIFFUSE)
+            il_material_type type = in[i].surf->material->type;
+            if (type != IL_MATERIAL_DIFFUSE && type != IL_MATERIAL_PHONG)
                 continue;
             fill_vertex(s, &in[i], &l, k);
+            /* il_bsdf_sample_dir_cos's lobe choice: the glossy lobe is not ours */
+            lane_next[k] = type == IL_MATERIAL_DIFFUSE || in[i].u_lobe < l.pd[k];
             lane_light[k] = fill_light(s, &in[i], &l, k);
             lane_vertex[k++] = i;
             if (k < LANES)
@@ -357,7 +427,7 @@ IL_AVX2 static void diffuse_wave_avx2(const il_scene *s, const il_diffuse_in *in
         nee8(&l, epsilon, nee);
         next8(&l, epsilon);
         for (int e = 0; e < k; e++)
-            store_lane(&l, lane_light[e], out[lane_vertex[e]], e);
+            store_lane(&l, lane_light[e], lane_next[e], out[lane_vertex[e]], e);
         k = 0;
     }
 }

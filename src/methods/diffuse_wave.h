@@ -1,5 +1,5 @@
-/* The Lambertian vertices of a wave, eight at a time: what the wavefront
- * methods (the path tracer, Linespace) compute at a diffuse hit before they
+/* The Lambertian and Phong vertices of a wave, eight at a time: what the
+ * wavefront methods (the path tracer, Linespace) compute at such a hit before they
  * trace on, a light sample with its shadow ray and a BSDF sample with the
  * next ray, made for many vertices together and bit for bit as the scalar
  * code makes it one vertex at a time (il_light_sample_at, il_bsdf_eval,
@@ -15,13 +15,14 @@
 #include "trace/trace.h"
 
 /* One vertex: where the path hit (with its material), the direction back
- * along the path, the throughput so far, its light-choice number, the point
- * sample on the light, and the cosine-weighted direction drawn for its BSDF
- * pair (il_sample_cosine_hemisphere). */
+ * along the path, the throughput so far, its light-choice number, its
+ * lobe-choice number (a Phong surface's: il_bsdf_sample_dir_cos's u_lobe),
+ * the point sample on the light, and the cosine-weighted direction drawn
+ * for its BSDF pair (il_sample_cosine_hemisphere). */
 typedef struct il_diffuse_in {
     const il_surface *surf;
     il_vec3 wo, beta;
-    float u_select;
+    float u_select, u_lobe;
     il_vec2 u_light;
     il_vec3 cos_dir;
 } il_diffuse_in;
@@ -41,8 +42,9 @@ typedef enum il_diffuse_nee {
  * a directional light: see il_light_rec; for a spot light or the
  * environment the caller samples the light itself), and `shadow` says
  * whether it casts shadow_ray carrying shadow_L.
- * next_done: the BSDF sample was taken (always, for a Lambertian vertex on a
- * CPU with AVX2); next_ok when il_bsdf_sample_dir_cos succeeded and
+ * next_done: the BSDF sample was taken (on a CPU with AVX2: always for a
+ * Lambertian vertex, for a Phong one when u_lobe picks its diffuse lobe, the
+ * glossy lobe's sample being left to the caller); next_ok when il_bsdf_sample_dir_cos succeeded and
  * il_sides_agree holds, then next_beta = beta times the sample's weight,
  * next_pdf its pdf and next_ray the ray the path continues with. */
 typedef struct il_diffuse_out {
@@ -54,8 +56,8 @@ typedef struct il_diffuse_out {
     il_ray next_ray;
 } il_diffuse_out;
 
-/* For each in[i] whose material is Lambertian (IL_MATERIAL_DIFFUSE) fills
- * *out[i]; the flags of the others are false. */
+/* For each in[i] whose material is Lambertian or Phong (IL_MATERIAL_DIFFUSE,
+ * IL_MATERIAL_PHONG) fills *out[i]; the flags of the others are false. */
 void il_diffuse_wave(const il_scene *scene, const il_diffuse_in *in, il_diffuse_out *const *out,
                      uint32_t n, il_diffuse_nee nee);
 

@@ -2,9 +2,10 @@
  * stands for, bit for bit: for thousands of vertices found by random rays
  * in scenes with one- and two-sided triangle lamps, a ball lamp with
  * authored normals, a point, a directional and a spot light, Lambertian,
- * Phong and mirror surfaces, its light sample must equal il_pt_step_at's
- * (under MIS) and il_direct_light_sample's (plain), and its BSDF sample
- * il_bsdf_sample_dir_cos's.  Vertices it must leave to the caller (other
+ * Phong (exponents 20 and 300) and mirror surfaces, its light sample must
+ * equal il_pt_step_at's (under MIS) and il_direct_light_sample's (plain),
+ * and its BSDF sample il_bsdf_sample_dir_cos's (a Phong surface's diffuse
+ * lobe; its glossy lobe is left to the caller).  Vertices it must leave to the caller (other
  * materials; spot lights and triangles of meshes with normals) must keep
  * their flags false.  On a CPU without AVX2 it takes nothing. */
 #include <string.h>
@@ -78,7 +79,7 @@ static uint32_t make_vertices(const il_scene *s, il_vec3 lo, il_vec3 hi, il_surf
         il_vec2 u_bsdf = v2(il_pcg32_float(&rng), il_pcg32_float(&rng));
         in[n] = (il_diffuse_in){.surf = &surf[n], .wo = v3_neg(d),
                                 .beta = v3(il_pcg32_float(&rng), il_pcg32_float(&rng), 0.5f),
-                                .u_select = il_pcg32_float(&rng),
+                                .u_select = il_pcg32_float(&rng), .u_lobe = il_pcg32_float(&rng),
                                 .u_light = v2(il_pcg32_float(&rng), il_pcg32_float(&rng)),
                                 .cos_dir = il_sample_cosine_hemisphere(u_bsdf)};
         n++;
@@ -106,10 +107,14 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
         for (uint32_t i = 0; i < n; i++) {
             const il_surface *sf = &surf[i];
             bool diffuse = sf->material->type == IL_MATERIAL_DIFFUSE;
+            bool phong = sf->material->type == IL_MATERIAL_PHONG;
+            il_bsdf bp;
+            il_bsdf_init(&bp, s, sf);
+            bool lobe_ours = diffuse || (phong && in[i].u_lobe < bp.diffuse_prob);
             const il_light *l = &s->lights[il_light_select(s, in[i].u_select)];
             bool takes = (l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals) ||
                          l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_DIRECTIONAL;
-            if (out[i].next_done != (avx2 && diffuse) || out[i].nee_done != (avx2 && diffuse && takes)) {
+            if (out[i].next_done != (avx2 && lobe_ours) || out[i].nee_done != (avx2 && (diffuse || phong) && takes)) {
                 bad_flags++;
                 continue;
             }
@@ -130,7 +135,7 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
                 il_bsdf b;
                 il_bsdf_init(&b, s, sf);
                 il_bsdf_sample bs;
-                bool ok = il_bsdf_sample_dir_cos(&b, in[i].wo, 0.0f, v2(0.5f, 0.5f), &in[i].cos_dir, &bs) &&
+                bool ok = il_bsdf_sample_dir_cos(&b, in[i].wo, in[i].u_lobe, v2(0.5f, 0.5f), &in[i].cos_dir, &bs) &&
                           il_sides_agree(sf, in[i].wo, bs.wi);
                 il_ray next = {.org = il_offset_origin(s->tracer, sf->p, sf->ng, bs.wi), .tmin = 0.0f,
                                .dir = bs.wi, .tmax = INFINITY};
@@ -149,7 +154,7 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
     }
 }
 
-/* A room of Lambertian walls with a Phong floor and a mirror, lit by a
+/* A room of Lambertian walls, a Phong floor and wall, and a mirror, lit by a
  * one-sided and a two-sided quad lamp, a ball lamp (authored normals), a
  * point light, the sun and a spot light. */
 static il_scene *mixed_room(void)
@@ -159,14 +164,16 @@ static il_scene *mixed_room(void)
     uint32_t red = add_material(s, (il_material_desc){.diffuse = v3(0.6f, 0.1f, 0.1f)});
     uint32_t phong = add_material(s, (il_material_desc){.type = IL_MATERIAL_PHONG, .diffuse = v3s(0.3f),
                                                          .specular = v3s(0.4f), .exponent = 20.0f});
+    uint32_t shiny = add_material(s, (il_material_desc){.type = IL_MATERIAL_PHONG, .diffuse = v3(0.6f, 0.1f, 0.1f),
+                                                         .specular = v3(0.5f, 0.6f, 0.6f), .exponent = 300.0f});
     uint32_t mirror = add_material(s, (il_material_desc){.type = IL_MATERIAL_MIRROR, .specular = v3s(0.9f)});
     uint32_t lamp = add_material(s, (il_material_desc){.emission = v3(5, 5, 4)});
     uint32_t lamp2 = add_material(s, (il_material_desc){.emission = v3(2, 3, 4), .two_sided = true});
     add_floor(s, 0.0f, 2.0f, phong);
     add_quad(s, v3(0, 2, 0), v3(2, 0, 0), v3(0, 0, -2), white);   /* ceiling, facing down */
-    add_quad(s, v3(-2, 1, 0), v3(0, 0, 2), v3(0, 1, 0), red);     /* left wall */
+    add_quad(s, v3(-2, 1, 0), v3(0, 0, 2), v3(0, 1, 0), shiny);   /* left wall */
     add_quad(s, v3(2, 1, 0), v3(0, 1, 0), v3(0, 0, 2), white);
-    add_quad(s, v3(0, 1, -2), v3(2, 0, 0), v3(0, 1, 0), white);
+    add_quad(s, v3(0, 1, -2), v3(2, 0, 0), v3(0, 1, 0), red);
     add_quad(s, v3(0.5f, 0.6f, 0.5f), v3(0.3f, 0, 0), v3(0, 0.3f, 0), mirror);
     add_quad(s, v3(0, 1.95f, 0), v3(0.3f, 0, 0), v3(0, 0, 0.3f), lamp);
     add_quad(s, v3(-1, 1, -1), v3(0.2f, 0, 0), v3(0, 0.2f, 0.1f), lamp2);

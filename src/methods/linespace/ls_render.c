@@ -144,7 +144,7 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
 /* The vertex where p->ray ended (hit NULL: it left the scene).  u: its four
  * pairs, always drawn in this order (a fifth for the blur is drawn here
  * when a lookup is made), and cos_dir the cosine warp of u[2]; dw, when
- * not NULL, what il_diffuse_wave made of a Lambertian vertex with them
+ * not NULL, what il_diffuse_wave made of a Lambertian or Phong vertex with them
  * (its light sample, as il_direct_light_sample takes it, and its BSDF
  * sample, bit for bit), so that only the rest is done here.  Returns
  * true when the path goes on along p->ray; either way the caller then
@@ -166,11 +166,13 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         p->L = v3_add(p->L, v3_mul(p->beta, il_emitted_radiance(mat, surf->ng, wo)));
     if (p->depth >= m->set.max_depth)
         return LS_STOP;
-    /* A Lambertian vertex il_diffuse_wave made needs no BSDF of its own:
-     * lookup_probability is 1 for it. */
-    bool made = dw && dw->next_done;
+    /* A Lambertian vertex whose light and BSDF samples il_diffuse_wave made
+     * needs no BSDF of its own (lookup_probability is 1 for it); a Phong
+     * one still needs it for lookup_probability. */
+    bool made = dw && dw->next_done, nee_made = dw && dw->nee_done;
     il_bsdf b;
-    if (!made || !dw->nee_done)
+    bool lambert = surf->material->type == IL_MATERIAL_DIFFUSE;
+    if (!made || !nee_made || !lambert)
         il_bsdf_init(&b, s, surf);
     il_bsdf_sample bs;
     if (!made && il_bsdf_is_delta(&b)) {
@@ -181,7 +183,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         p->specular = true;
     } else {
         il_vec3 unblocked;
-        if (made && dw->nee_done) {
+        if (nee_made) {
             if (dw->shadow) {
                 p->shadow = true;
                 p->shadow_ray = dw->shadow_ray;
@@ -205,7 +207,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
                 return LS_STOP;
             next = v3_mul(p->beta, bs.weight);
         }
-        if (u[3].x < (made ? 1.0f : lookup_probability(m, &b))) {
+        if (u[3].x < (made && lambert ? 1.0f : lookup_probability(m, &b))) {
             cnt->lookups++;
             p->x = surf->p;
             p->ng = surf->ng;
@@ -321,6 +323,7 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             in->wo = v3_neg(p->ray.dir);
             in->beta = p->beta;
             in->u_select = w->u[k * LS_PAIRS].x;
+            in->u_lobe = w->u[k * LS_PAIRS].y;
             in->u_light = w->u[k * LS_PAIRS + 1];
             in->cos_dir = w->cos_dir[k];
             w->diffuse_ptr[k] = &w->diffuse_out[k];

@@ -96,7 +96,7 @@ static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
             il_pt_drawn *d = &w->drawn[a];
             w->diffuse_in[num_drawn] = (il_diffuse_in){
                 .surf = &w->surf[a], .wo = v3_neg(w->st[j].ray.dir), .beta = w->st[j].beta,
-                .u_select = d->u[0].x, .u_light = d->u[1], .cos_dir = d->cos_dir};
+                .u_select = d->u[0].x, .u_lobe = d->u[0].y, .u_light = d->u[1], .cos_dir = d->cos_dir};
             w->diffuse_out[num_drawn++] = &d->diffuse;
         }
     if (pm->strategy == IL_PT_MIS)
