@@ -1,10 +1,9 @@
-/* The Lambertian vertices of a wave, eight at a time in AVX2 lanes (see
- * diffuse_wave.h).
+/* The Lambertian and Phong vertices of a wave, eight at a time in AVX2
+ * lanes (see diffuse_wave.h).
  *
  * The commonest vertex of a scene is a diffuse surface whose light sample
  * lands on a triangle light, a point light or the sun.  Its light sample is
- * a chain of
- * dependent square roots, divisions and dot products (il_light_sample_at,
+ * a chain of dependent square roots, divisions and dot products (il_light_sample_at,
  * il_bsdf_eval, the power heuristic, il_shadow_ray), and its next ray
  * another (the shading frame, il_bsdf_sample_dir_cos, il_offset_origin),
  * which one path at a time leave the CPU waiting on each result.  Here the
@@ -218,8 +217,9 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     __m256 agree = _mm256_andnot_ps(_mm256_xor_ps(gt0(g), gt0(n)), _mm256_cmp_ps(g, zero, _CMP_NEQ_UQ));
     ok = _mm256_and_ps(ok, agree);
 
-    /* il_bsdf_eval, Lambertian: same geometric side (g > 0), wo above the
-     * flipped shading frame, wi above it too; f = kd/pi, pdf = cos/pi. */
+    /* il_bsdf_eval: same geometric side (g > 0), wo above the flipped
+     * shading frame, wi above it too; f = kd/pi, pdf = cos/pi, and a Phong
+     * lane's lobe added (phong8). */
     __m256 flip = _mm256_cmp_ps(wo_ns, zero, _CMP_LT_OQ);
     __m256 wo_z = sel(flip, _mm256_xor_ps(wo_ns, _mm256_set1_ps(-0.0f)), wo_ns);
     __m256 wi_z = sel(flip, _mm256_xor_ps(wi_ns, _mm256_set1_ps(-0.0f)), wi_ns);

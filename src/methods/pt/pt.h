@@ -79,7 +79,7 @@ typedef struct il_pt_drawn {
     il_vec3 cos_dir;       /* il_sample_cosine_hemisphere(u[2]) */
     bool roulette;         /* u[3] holds the roulette number (a Sobol sampler's
                               next pair, whose first member il_sampler_1d gives) */
-    il_diffuse_out diffuse; /* a Lambertian vertex's light sample and next ray,
+    il_diffuse_out diffuse; /* a Lambertian or Phong vertex's light sample and next ray,
                               made with the wave's others (il_diffuse_wave) */
 } il_pt_drawn;
 

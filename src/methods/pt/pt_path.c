@@ -95,7 +95,8 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
         return false;
 
     /* A vertex whose light sample and next ray a wave already made
-     * (il_diffuse_wave) needs no BSDF of its own. */
+     * (il_diffuse_wave) needs no BSDF of its own; one with either made
+     * takes it from there. */
     const il_diffuse_out *made = drawn ? &drawn->diffuse : NULL;
     bool nee_done = made && made->nee_done, next_done = made && made->next_done;
     il_bsdf b;

@@ -59,7 +59,7 @@ typedef struct pt_wave {
  * is the roulette number il_sampler_1d would give (a PCG sampler's 1D draw
  * takes one number, not a pair, so there it stays in il_pt_step_at).  Then
  * the cosine-weighted directions of the BSDF pairs, together, and last the
- * light samples and next rays of the Lambertian vertices, eight at a time
+ * light samples and next rays of the Lambertian and Phong vertices, eight at a time
  * (il_diffuse_wave), which il_pt_step_at then only applies. */
 static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
 {
