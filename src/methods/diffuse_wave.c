@@ -2,7 +2,7 @@
  * lanes (see diffuse_wave.h).
  *
  * The commonest vertex of a scene is a diffuse surface whose light sample
- * lands on a triangle light, a point light or the sun.  Its light sample is
+ * lands on a triangle light, a point light, the sun or the sky.  Its light sample is
  * a chain of dependent square roots, divisions and dot products (il_light_sample_at,
  * il_bsdf_eval, the power heuristic, il_shadow_ray), and its next ray
  * another (the shading frame, il_bsdf_sample_dir_cos, il_offset_origin),
@@ -46,7 +46,7 @@ typedef struct lanes {
     float cos_dir[3][LANES];
     float is_phong[LANES], ks[3][LANES], expo[LANES], pd[LANES]; /* Phong lanes' il_bsdf */
     float q0[3][LANES], q1[3][LANES], q2[3][LANES], lng[3][LANES], area[LANES], pmf[LANES];
-    float rad[3][LANES], two_sided[LANES], is_point[LANES], is_dir[LANES], ux[LANES], uy[LANES];
+    float rad[3][LANES], two_sided[LANES], is_point[LANES], is_dir[LANES], is_env[LANES], ux[LANES], uy[LANES];
     float cast[LANES], org[3][LANES], dir[3][LANES], shadow_L[3][LANES];
     float next_ok[LANES], next_beta[3][LANES], next_pdf[LANES], next_org[3][LANES], next_dir[3][LANES];
 } lanes;
@@ -172,6 +172,9 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
 
     const __m256 is_point = _mm256_loadu_ps(l->is_point), is_dir = _mm256_loadu_ps(l->is_dir);
     const __m256 is_delta = _mm256_or_ps(is_point, is_dir), all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    /* A direction given in the record: the sun's, or the environment's
+     * sample (drawn by fill_light); the shadow ray then has no end. */
+    const __m256 is_env = _mm256_loadu_ps(l->is_env), is_far = _mm256_or_ps(is_dir, is_env);
     /* il_light_sample_at.  A triangle: il_sample_triangle, then the point
      * p0 b0 + p1 b1 + p2 b2 (il_scene_point); a point light: its position. */
     __m256 ux = _mm256_loadu_ps(l->ux), uy = _mm256_loadu_ps(l->uy);
@@ -184,14 +187,15 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     v3x8 q = add3(add3(scale3(q0, b0), scale3(load3(l->q1), b1)), scale3(load3(l->q2), b2));
     q = sel3(is_point, q0, q);
     v3x8 lng = load3(l->lng);
-    /* aim_at; a directional light's wi is its record's p0. */
+    /* aim_at, or the direction given in q0. */
     v3x8 d = sub3(q, p);
     __m256 dist2 = dot3(d, d);
     __m256 dist = _mm256_sqrt_ps(dist2);
-    v3x8 wi = sel3(is_dir, q0, scale3(d, _mm256_div_ps(one, dist)));
+    v3x8 wi = sel3(is_far, q0, scale3(d, _mm256_div_ps(one, dist)));
     /* A triangle's radiance towards p and its pdf: selection times
      * area_to_solid_angle; a point light's I / d^2 (pbrt-v4 12.1); a
-     * directional light's irradiance; delta lights' pdf the selection's. */
+     * directional light's irradiance; delta lights' pdf the selection's;
+     * the environment's radiance and pdf as fill_light drew them. */
     v3x8 le = load3(l->rad);
     __m256 pmf = _mm256_loadu_ps(l->pmf);
     __m256 facing = _mm256_or_ps(_mm256_loadu_ps(l->two_sided), gt0(dot3(lng, neg3(wi))));
@@ -202,11 +206,12 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     __m256 pdf_tri = _mm256_mul_ps(pmf, pdf_area);
     __m256 finite = _mm256_cmp_ps(fabs8(pdf_tri), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
     __m256 ok_tri = _mm256_and_ps(_mm256_and_ps(gt0(pdf_tri), finite), _mm256_xor_ps(is_zero3(rad_tri), all));
-    v3x8 rad = sel3(is_point, scale3(le, _mm256_div_ps(one, dist2)), sel3(is_dir, le, rad_tri));
-    __m256 pdf = sel(is_delta, pmf, pdf_tri);
-    /* Directional: always; a point light: p not on it; a triangle: also a
-     * usable pdf and light towards p. */
-    __m256 ok = _mm256_or_ps(is_dir, _mm256_and_ps(gt0(dist2), _mm256_or_ps(is_point, ok_tri)));
+    v3x8 rad = sel3(is_point, scale3(le, _mm256_div_ps(one, dist2)), sel3(is_far, le, rad_tri));
+    __m256 pdf = sel(_mm256_or_ps(is_delta, is_env), pmf, pdf_tri);
+    /* Directional: always; the environment: a pdf above zero; a point
+     * light: p not on it; a triangle: also a usable pdf and light towards p. */
+    __m256 ok = _mm256_or_ps(_mm256_or_ps(is_dir, _mm256_and_ps(is_env, gt0(pdf))),
+                             _mm256_and_ps(_mm256_andnot_ps(is_env, gt0(dist2)), _mm256_or_ps(is_point, ok_tri)));
     if (mode == IL_DIFFUSE_NEE_PLAIN) /* il_direct_light_sample's own tests */
         ok = _mm256_and_ps(ok, _mm256_and_ps(gt0(pdf), _mm256_xor_ps(is_zero3(rad), all)));
 
@@ -253,8 +258,8 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     __m256 eps = _mm256_set1_ps(epsilon);
     v3x8 o = offset_origin(eps, p, ng, d);
     v3x8 target = sel3(is_zero3(lng), q, offset_origin(eps, q, lng, neg3(d)));
-    store3(l->org, sel3(is_dir, offset_origin(eps, p, ng, wi), o));
-    store3(l->dir, sel3(is_dir, wi, sub3(target, o)));
+    store3(l->org, sel3(is_far, offset_origin(eps, p, ng, wi), o));
+    store3(l->dir, sel3(is_far, wi, sub3(target, o)));
     if (mode == IL_DIFFUSE_NEE_MIS)
         store3(l->shadow_L, scale3(mul3(load3(l->beta), mul3(f, rad)), _mm256_div_ps(_mm256_mul_ps(cos_i, w), pdf)));
     else
@@ -357,6 +362,15 @@ static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes
     l->two_sided[k] = r->two_sided ? -1.0f : 0.0f;
     l->is_point[k] = r->kind == IL_LREC_POINT ? -1.0f : 0.0f;
     l->is_dir[k] = r->kind == IL_LREC_DIRECTIONAL ? -1.0f : 0.0f;
+    l->is_env[k] = r->kind == IL_LREC_ENVIRONMENT ? -1.0f : 0.0f;
+    if (r->kind == IL_LREC_ENVIRONMENT) {
+        /* il_light_sample_at's draw: the direction, its radiance and pdf. */
+        float pdf_dir;
+        il_vec3 wi;
+        put3(l->rad, k, il_environment_sample(s, in->u_light, &wi, &pdf_dir));
+        put3(l->q0, k, wi);
+        l->pmf[k] = r->pmf * pdf_dir;
+    }
     l->ux[k] = in->u_light.x;
     l->uy[k] = in->u_light.y;
     return r->kind;
@@ -371,7 +385,7 @@ static void copy_lane0(lanes *l, int k)
         for (int c = 0; c < 3; c++)
             v3s_[i][c][k] = v3s_[i][c][0];
     l->area[k] = l->area[0], l->pmf[k] = l->pmf[0], l->two_sided[k] = l->two_sided[0];
-    l->is_point[k] = l->is_point[0], l->is_dir[k] = l->is_dir[0];
+    l->is_point[k] = l->is_point[0], l->is_dir[k] = l->is_dir[0], l->is_env[k] = l->is_env[0];
     l->is_phong[k] = l->is_phong[0], l->expo[k] = l->expo[0], l->pd[k] = l->pd[0];
     l->ux[k] = l->ux[0], l->uy[k] = l->uy[0];
 }
@@ -385,7 +399,7 @@ static void store_lane(const lanes *l, il_lrec_kind light, bool next, il_diffuse
     out->shadow = out->nee_done && l->cast[k] != 0.0f;
     if (out->shadow) {
         /* il_shadow_ray's end short of the light, or none for a direction */
-        float tmax = light == IL_LREC_DIRECTIONAL ? INFINITY : 1.0f - 1e-4f;
+        float tmax = light == IL_LREC_DIRECTIONAL || light == IL_LREC_ENVIRONMENT ? INFINITY : 1.0f - 1e-4f;
         out->shadow_ray = (il_ray){.org = get3(l->org, k), .tmin = 0.0f, .dir = get3(l->dir, k),
                                    .tmax = tmax};
         out->shadow_L = get3(l->shadow_L, k);

@@ -112,6 +112,8 @@ static il_status build_light_recs(il_scene *s, il_error *err)
             /* il_light_sample_at's wi, computed once. */
             *r = (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = r->pmf,
                                 .kind = IL_LREC_DIRECTIONAL};
+        } else if (l->kind == IL_LIGHTK_ENVIRONMENT) {
+            *r = (il_light_rec){.pmf = r->pmf, .kind = IL_LREC_ENVIRONMENT};
         }
     }
     return IL_OK;

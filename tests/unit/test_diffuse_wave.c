@@ -1,7 +1,7 @@
 /* il_diffuse_wave (methods/diffuse_wave.c) against the scalar code it
  * stands for, bit for bit: for thousands of vertices found by random rays
  * in scenes with one- and two-sided triangle lamps, a ball lamp with
- * authored normals, a point, a directional and a spot light, Lambertian,
+ * authored normals, a point, a directional and a spot light, a sky, Lambertian,
  * Phong (exponents 20 and 300) and mirror surfaces, its light sample must
  * equal il_pt_step_at's (under MIS) and il_direct_light_sample's (plain),
  * and its BSDF sample il_bsdf_sample_dir_cos's (a Phong surface's diffuse
@@ -113,7 +113,8 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
             bool lobe_ours = diffuse || (phong && in[i].u_lobe < bp.diffuse_prob);
             const il_light *l = &s->lights[il_light_select(s, in[i].u_select)];
             bool takes = (l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals) ||
-                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_DIRECTIONAL;
+                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_DIRECTIONAL ||
+                         l->kind == IL_LIGHTK_ENVIRONMENT;
             if (out[i].next_done != (avx2 && lobe_ours) || out[i].nee_done != (avx2 && (diffuse || phong) && takes)) {
                 bad_flags++;
                 continue;
@@ -156,7 +157,7 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
 
 /* A room of Lambertian walls, a Phong floor and wall, and a mirror, lit by a
  * one-sided and a two-sided quad lamp, a ball lamp (authored normals), a
- * point light, the sun and a spot light. */
+ * point light, the sun, a spot light and a sky. */
 static il_scene *mixed_room(void)
 {
     il_scene *s = new_scene();
@@ -185,6 +186,8 @@ static il_scene *mixed_room(void)
          .intensity = {3, 3, 3}, .spot_angle = 40.0f, .spot_exponent = 4.0f}};
     for (int i = 0; i < 3; i++)
         CHECK_OK(il_scene_add_light(s, &lights[i], &g_err), &g_err);
+    il_environment_desc sky = {.radiance = v3(0.2f, 0.25f, 0.3f)}; /* seen through the open front */
+    CHECK_OK(il_scene_set_environment(s, &sky, &g_err), &g_err);
     set_camera(s, v3(0, 1, 3.5f), v3(0, 1, 0), v3(0, 1, 0), 55.0f);
     commit(s);
     return s;
