@@ -25,7 +25,7 @@ void il_bsdf_init(il_bsdf *b, const il_scene *scene, const il_surface *s)
     b->ng = s->ng;
     b->diffuse = clamp_colour(scene ? il_material_diffuse(scene, m, s->uv) : m->diffuse);
     b->specular = clamp_colour(m->specular);
-    b->exponent = m->exponent > 0.0f ? m->exponent : 32.0f;
+    b->exponent = il_phong_exponent(m);
     b->ior = m->ior > 0.0f ? m->ior : 1.5f;
     b->diffuse_prob = 1.0f;
 

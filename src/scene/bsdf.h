@@ -27,6 +27,12 @@ typedef struct il_bsdf_sample {
     bool delta;            /* mirror or glass: not reachable by light sampling */
 } il_bsdf_sample;
 
+/* A Phong material's exponent as its BSDF uses it (0 means 32). */
+static inline float il_phong_exponent(const il_material *m)
+{
+    return m->exponent > 0.0f ? m->exponent : 32.0f;
+}
+
 void il_bsdf_init(il_bsdf *b, const il_scene *scene, const il_surface *s);
 /* f(wo, wi) and the pdf of il_bsdf_sample choosing wi; zero for delta BSDFs. */
 il_vec3 il_bsdf_eval(const il_bsdf *b, il_vec3 wo, il_vec3 wi, float *pdf);

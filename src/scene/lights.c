@@ -85,37 +85,42 @@ static il_status build_fail(il_scene *s, il_status st)
     return st;
 }
 
-/* scene->light_recs (see il_light_rec); after the triangle records. */
+/* The record of light l with selection probability pmf (see il_light_rec). */
+static il_light_rec light_rec(const il_scene *s, const il_light *l, float pmf)
+{
+    il_light_rec none = {.kind = IL_LREC_NONE};
+    if (!(pmf > 0.0f))
+        return none;
+    switch (l->kind) {
+    case IL_LIGHTK_AREA: {
+        const il_mesh *m = &s->meshes[l->mesh];
+        if (m->normals || !m->geom)
+            return none;
+        const il_tri_geom *g = &m->geom[l->prim];
+        return (il_light_rec){.p0 = g->p0, .p1 = g->p1, .p2 = g->p2, .ng = g->ng, .radiance = l->radiance,
+                              .area = l->area, .pmf = pmf, .two_sided = l->two_sided,
+                              .kind = IL_LREC_TRIANGLE};
+    }
+    case IL_LIGHTK_POINT:
+        return (il_light_rec){.p0 = l->position, .radiance = l->intensity, .pmf = pmf, .kind = IL_LREC_POINT};
+    case IL_LIGHTK_DIRECTIONAL: /* il_light_sample_at's wi, computed once */
+        return (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = pmf,
+                              .kind = IL_LREC_DIRECTIONAL};
+    case IL_LIGHTK_ENVIRONMENT:
+        return (il_light_rec){.pmf = pmf, .kind = IL_LREC_ENVIRONMENT};
+    default:
+        return none;
+    }
+}
+
+/* scene->light_recs; after the triangle records and the pmf. */
 static il_status build_light_recs(il_scene *s, il_error *err)
 {
-    s->light_recs = il_calloc(s->num_lights, sizeof(il_light_rec), err);
+    s->light_recs = il_malloc(s->num_lights * sizeof(il_light_rec), err);
     if (!s->light_recs)
         return build_fail(s, IL_ERR_MEMORY);
-    for (uint32_t i = 0; i < s->num_lights; i++) {
-        const il_light *l = &s->lights[i];
-        il_light_rec *r = &s->light_recs[i];
-        if (!(s->light_pmf[i] > 0.0f))
-            continue;
-        r->pmf = s->light_pmf[i];
-        if (l->kind == IL_LIGHTK_AREA) {
-            const il_mesh *m = &s->meshes[l->mesh];
-            if (m->normals || !m->geom)
-                continue;
-            const il_tri_geom *g = &m->geom[l->prim];
-            *r = (il_light_rec){.p0 = g->p0, .p1 = g->p1, .p2 = g->p2, .ng = g->ng, .radiance = l->radiance,
-                                .area = l->area, .pmf = r->pmf, .two_sided = l->two_sided,
-                                .kind = IL_LREC_TRIANGLE};
-        } else if (l->kind == IL_LIGHTK_POINT) {
-            *r = (il_light_rec){.p0 = l->position, .radiance = l->intensity, .pmf = r->pmf,
-                                .kind = IL_LREC_POINT};
-        } else if (l->kind == IL_LIGHTK_DIRECTIONAL) {
-            /* il_light_sample_at's wi, computed once. */
-            *r = (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = r->pmf,
-                                .kind = IL_LREC_DIRECTIONAL};
-        } else if (l->kind == IL_LIGHTK_ENVIRONMENT) {
-            *r = (il_light_rec){.pmf = r->pmf, .kind = IL_LREC_ENVIRONMENT};
-        }
-    }
+    for (uint32_t i = 0; i < s->num_lights; i++)
+        s->light_recs[i] = light_rec(s, &s->lights[i], s->light_pmf[i]);
     return IL_OK;
 }
 

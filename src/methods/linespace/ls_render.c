@@ -50,18 +50,20 @@ typedef struct ls_method {
     _Atomic uint64_t lookups, hits, empty, occluded;
 } ls_method;
 
-/* How likely a hit reads the Linespace rather than tracing on. */
-static float lookup_probability(const ls_method *m, const il_bsdf *b)
+/* How likely a hit on material `mat` reads the Linespace rather than
+ * tracing on. */
+static float lookup_probability(const ls_method *m, const il_material *mat)
 {
-    if (b->type == IL_MATERIAL_DIFFUSE)
+    if (mat->type == IL_MATERIAL_DIFFUSE)
         return 1.0f;
-    if (b->type != IL_MATERIAL_PHONG)
+    if (mat->type != IL_MATERIAL_PHONG)
         return 0.0f;
-    if (b->exponent <= m->set.n1)
+    float e = il_phong_exponent(mat);
+    if (e <= m->set.n1)
         return 1.0f;
-    if (b->exponent >= m->set.n2)
+    if (e >= m->set.n2)
         return 0.0f;
-    return (m->set.n2 - b->exponent) / (m->set.n2 - m->set.n1);
+    return (m->set.n2 - e) / (m->set.n2 - m->set.n1);
 }
 
 /* One camera path: what il_pt_state is to the path tracer.  A vertex's
@@ -166,13 +168,11 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         p->L = v3_add(p->L, v3_mul(p->beta, il_emitted_radiance(mat, surf->ng, wo)));
     if (p->depth >= m->set.max_depth)
         return LS_STOP;
-    /* A Lambertian vertex whose light and BSDF samples il_diffuse_wave made
-     * needs no BSDF of its own (lookup_probability is 1 for it); a Phong
-     * one still needs it for lookup_probability. */
+    /* A vertex whose light and BSDF samples il_diffuse_wave made needs no
+     * BSDF of its own. */
     bool made = dw && dw->next_done, nee_made = dw && dw->nee_done;
     il_bsdf b;
-    bool lambert = surf->material->type == IL_MATERIAL_DIFFUSE;
-    if (!made || !nee_made || !lambert)
+    if (!made || !nee_made)
         il_bsdf_init(&b, s, surf);
     il_bsdf_sample bs;
     if (!made && il_bsdf_is_delta(&b)) {
@@ -207,7 +207,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
                 return LS_STOP;
             next = v3_mul(p->beta, bs.weight);
         }
-        if (u[3].x < (made && lambert ? 1.0f : lookup_probability(m, &b))) {
+        if (u[3].x < lookup_probability(m, mat)) {
             cnt->lookups++;
             p->x = surf->p;
             p->ng = surf->ng;
