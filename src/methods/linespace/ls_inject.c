@@ -41,10 +41,14 @@
 
 #define LS_CHUNK 1024u
 
+/* A deposit: first voxel << 32 | (shaft number * 2 + direction), as the
+ * walk finds it, then, once the chunk is traced, the entry 2 * slot +
+ * direction (resolve_slots), NO_ENTRY for a shaft not stored. */
 typedef struct deposit {
     uint64_t entry;
     float rgb[3];
 } deposit;
+#define NO_ENTRY UINT64_MAX
 
 typedef struct chunk {
     deposit *d;
@@ -68,8 +72,28 @@ static void push(chunk *c, uint64_t entry, il_vec3 v)
     c->d[c->count++] = (deposit){entry, {v.x, v.y, v.z}};
 }
 
+/* Where the line p + t d leaves the cell with corner lo: il_ls_locate's
+ * t_out by the same operations (so the walk steps exactly as it would
+ * with it), without the faces and patches an empty cell does not need. */
+static inline float cell_exit(il_vec3 lo, il_vec3 size, il_vec3 p, il_vec3 d)
+{
+    float tf = INFINITY;
+    for (int i = 0; i < 3; i++) {
+        float di = v3_get(d, i);
+        if (di == 0.0f) /* parallel to the slab: it never bounds the line */
+            continue;
+        float inv = 1.0f / di, l = v3_get(lo, i), h = l + v3_get(size, i), pi = v3_get(p, i);
+        float far = di > 0.0f ? (h - pi) * inv : (l - pi) * inv;
+        tf = far < tf ? far : tf;
+    }
+    return tf;
+}
+
 /* Walks the voxels the segment o + t d, t in [0, t_end] (d unit) crosses
- * and deposits power * (its length in each) into the shaft of its line. */
+ * and deposits power * (its length in each) into the shaft of its line.
+ * A voxel with triangles is located by il_ls_find (the lookups' fast
+ * path); of an empty one, which il_ls_find turns down, the walk needs only
+ * the exit (cell_exit). */
 static void deposit_segment(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_vec3 power,
                             chunk *c)
 {
@@ -99,27 +123,42 @@ static void deposit_segment(const il_linespace *ls, il_vec3 o, il_vec3 d, float 
     for (int guard = 0; t < t1 && guard < 100000; guard++) {
         /* The cell the segment is in just after t. */
         il_vec3 p = v3_fma(o, d, il_minf(t + step_eps, 0.5f * (t + t1)));
-        uint32_t cc[3];
-        if (!il_ls_cell_of(ls, p, cc))
-            return;
-        il_vec3 lo;
-        il_ls_cell_box(ls, cc, &lo);
-        uint32_t fi, pi, fo, po;
+        uint32_t voxel, shaft, dir;
         float tin, tout;
-        if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout))
-            return;
+        bool located = il_ls_find(ls, p, d, &voxel, &shaft, &dir, &tin, &tout);
+        if (!located) {
+            uint32_t cc[3];
+            if (!il_ls_cell_of(ls, p, cc))
+                return;
+            il_vec3 lo;
+            il_ls_cell_box(ls, cc, &lo);
+            tout = cell_exit(lo, ls->vsize, p, d);
+        }
         float t_next = il_minf(t1, v3_dot(v3_sub(p, o), d) + tout);
         if (!(t_next > t))
             t_next = t + step_eps;
-        int32_t v = ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])];
-        if (v >= 0) {
-            uint32_t dir;
-            uint32_t shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, &dir);
-            int64_t slot = il_ls_slot(ls, (uint32_t)v, shaft);
-            if (slot >= 0)
-                push(c, 2u * (uint64_t)slot + dir, v3_scale(power, t_next - t));
-        }
+        if (located)
+            push(c, (uint64_t)voxel << 32 | (2u * shaft + dir), v3_scale(power, t_next - t));
         t = t_next;
+    }
+}
+
+/* The chunk's deposits' slots, looked up after its paths are traced: the
+ * bit words are read a few deposits ahead of their use, so their cache
+ * misses overlap instead of stalling the walk one by one.  A shaft that is
+ * not stored (no geometry in it) gets NO_ENTRY and is skipped. */
+static void resolve_slots(const il_linespace *ls, chunk *c)
+{
+    enum { AHEAD = 8 };
+    for (size_t i = 0; i < c->count; i++) {
+        if (i + AHEAD < c->count) {
+            uint64_t a = c->d[i + AHEAD].entry;
+            __builtin_prefetch(&ls->words[(a >> 32) * ls->mask_words + (uint32_t)a / 128u]);
+        }
+        deposit *e = &c->d[i];
+        uint32_t key = (uint32_t)e->entry;
+        int64_t slot = il_ls_slot(ls, (uint32_t)(e->entry >> 32), key >> 1);
+        e->entry = slot >= 0 ? 2u * (uint64_t)slot + (key & 1u) : NO_ENTRY;
     }
 }
 
@@ -158,6 +197,48 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     }
 }
 
+/* Adds the deposits of chunks ch[0..n-1] to the sums, in chunk order and
+ * in each chunk's order, so the sums do not depend on the thread count.
+ * The threads split the entries, not the deposits: each reads every
+ * deposit and adds those of its own range, so every sum still gets its
+ * terms in that order; the sums' cache misses are fetched a few deposits
+ * ahead. */
+static void merge_round(const chunk *ch, size_t n, uint64_t num_entries, int threads, double *acc,
+                        uint8_t *filled, uint64_t *deposits)
+{
+    enum { AHEAD = 8 };
+    uint64_t count = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : count)
+    {
+        uint64_t parts = 1, part = 0;
+#ifdef _OPENMP
+        parts = (uint64_t)omp_get_num_threads();
+        part = (uint64_t)omp_get_thread_num();
+#endif
+        const uint64_t lo = num_entries * part / parts, hi = num_entries * (part + 1u) / parts;
+        for (size_t k = 0; k < n; k++) {
+            const deposit *d = ch[k].d;
+            for (size_t i = 0; i < ch[k].count; i++) {
+                if (i + AHEAD < ch[k].count) {
+                    uint64_t ahead = d[i + AHEAD].entry;
+                    if (ahead >= lo && ahead < hi)
+                        __builtin_prefetch(acc + 3u * ahead, 1);
+                }
+                uint64_t e = d[i].entry; /* NO_ENTRY is in no range */
+                if (e < lo || e >= hi)
+                    continue;
+                count++;
+                double *a = acc + 3u * e;
+                a[0] += d[i].rgb[0];
+                a[1] += d[i].rgb[1];
+                a[2] += d[i].rgb[2];
+                filled[e] = 1;
+            }
+        }
+    }
+    *deposits += count;
+}
+
 il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t seed, int threads,
                        il_linespace *ls, il_ls_inject_result *out, il_error *err)
 {
@@ -174,7 +255,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
     double *acc = calloc(3u * num_entries + 1, sizeof(double));
     uint8_t *filled = calloc(num_entries + 1, 1); /* entry 2 slot + dir holds a deposit */
     uint64_t num_chunks = (paths + LS_CHUNK - 1) / LS_CHUNK;
-    uint64_t round = (uint64_t)threads * 4u;
+    uint64_t round = (uint64_t)threads * 16u;
     if (round > num_chunks)
         round = num_chunks ? num_chunks : 1;
     chunk *ch = calloc((size_t)round, sizeof(chunk));
@@ -197,22 +278,14 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
                 trace_path(scene, ls, st->inject_depth, seed, i, &c);
+            resolve_slots(ls, &c);
             ch[k] = c;
         }
-        /* In chunk order: the sums do not depend on the thread count. */
         for (int64_t k = 0; k < n; k++) {
             oom |= ch[k].oom;
             out->rays += ch[k].rays;
-            out->deposits += ch[k].count;
-            for (size_t i = 0; i < ch[k].count; i++) {
-                const deposit *d = &ch[k].d[i];
-                double *a = acc + 3u * d->entry;
-                a[0] += d->rgb[0];
-                a[1] += d->rgb[1];
-                a[2] += d->rgb[2];
-                filled[d->entry] = 1;
-            }
         }
+        merge_round(ch, (size_t)n, num_entries, threads, acc, filled, &out->deposits);
     }
     for (uint64_t k = 0; k < round; k++)
         free(ch[k].d);
