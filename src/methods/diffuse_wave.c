@@ -2,7 +2,7 @@
  * lanes (see diffuse_wave.h).
  *
  * The commonest vertex of a scene is a diffuse surface whose light sample
- * lands on a triangle light, a point light, the sun or the sky.  Its light sample is
+ * lands on a triangle light, a point or spot light, the sun or the sky.  Its light sample is
  * a chain of dependent square roots, divisions and dot products (il_light_sample_at,
  * il_bsdf_eval, the power heuristic, il_shadow_ray), and its next ray
  * another (the shading frame, il_bsdf_sample_dir_cos, il_offset_origin),
@@ -47,6 +47,7 @@ typedef struct lanes {
     float is_phong[LANES], ks[3][LANES], expo[LANES], pd[LANES]; /* Phong lanes' il_bsdf */
     float q0[3][LANES], q1[3][LANES], q2[3][LANES], lng[3][LANES], area[LANES], pmf[LANES];
     float rad[3][LANES], two_sided[LANES], is_point[LANES], is_dir[LANES], is_env[LANES], ux[LANES], uy[LANES];
+    float is_spot[LANES], cos_cutoff[LANES], spot_exponent[LANES]; /* a spot (is_point too): q1 its axis */
     float cast[LANES], org[3][LANES], dir[3][LANES], shadow_L[3][LANES];
     float next_ok[LANES], next_beta[3][LANES], next_pdf[LANES], next_org[3][LANES], next_dir[3][LANES];
 } lanes;
@@ -162,6 +163,26 @@ IL_AVX2 static void phong8(lanes *l, v3x8 wi_l, __m256 wo_lx, __m256 wo_ly, __m2
     *pdf = sel(is_phong, pp, *pdf);
 }
 
+/* A spot light's profile for the spot lanes (il_light_sample_at): c the
+ * cosine between its axis and the direction to the shading point; the
+ * lane's sample is kept when c is not below the cut-off and, with a
+ * positive exponent, above zero; its intensity is then scaled by c^n
+ * (powf per lane, the scalar code's own call; 1 without an exponent). */
+IL_AVX2 static __m256 spot8(const lanes *l, __m256 c, __m256 *keep)
+{
+    const __m256 zero = _mm256_setzero_ps(), all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+    __m256 n = _mm256_loadu_ps(l->spot_exponent);
+    __m256 below = _mm256_cmp_ps(c, _mm256_loadu_ps(l->cos_cutoff), _CMP_LT_OQ);
+    __m256 behind = _mm256_and_ps(gt0(n), _mm256_cmp_ps(c, zero, _CMP_LE_OQ));
+    *keep = _mm256_xor_ps(_mm256_or_ps(below, behind), all);
+    float cc[LANES], keep_[LANES], scale[LANES];
+    _mm256_storeu_ps(cc, c);
+    _mm256_storeu_ps(keep_, _mm256_and_ps(*keep, _mm256_loadu_ps(l->is_spot)));
+    for (int k = 0; k < LANES; k++)
+        scale[k] = keep_[k] != 0.0f && l->spot_exponent[k] > 0.0f ? powf(cc[k], l->spot_exponent[k]) : 1.0f;
+    return _mm256_loadu_ps(scale);
+}
+
 /* The light sample of eight lanes: the next-event block of il_pt_step_at
  * (IL_DIFFUSE_NEE_MIS) or il_direct_light_sample (IL_DIFFUSE_NEE_PLAIN). */
 IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
@@ -176,7 +197,8 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
      * sample (drawn by fill_light); the shadow ray then has no end. */
     const __m256 is_env = _mm256_loadu_ps(l->is_env), is_far = _mm256_or_ps(is_dir, is_env);
     /* il_light_sample_at.  A triangle: il_sample_triangle, then the point
-     * p0 b0 + p1 b1 + p2 b2 (il_scene_point); a point light: its position. */
+     * p0 b0 + p1 b1 + p2 b2 (il_scene_point); a point or spot light: its
+     * position. */
     __m256 ux = _mm256_loadu_ps(l->ux), uy = _mm256_loadu_ps(l->uy);
     __m256 hx = _mm256_mul_ps(_mm256_set1_ps(0.5f), ux), hy = _mm256_mul_ps(_mm256_set1_ps(0.5f), uy);
     __m256 upper = _mm256_cmp_ps(ux, uy, _CMP_LT_OQ);
@@ -206,12 +228,24 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
     __m256 pdf_tri = _mm256_mul_ps(pmf, pdf_area);
     __m256 finite = _mm256_cmp_ps(fabs8(pdf_tri), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
     __m256 ok_tri = _mm256_and_ps(_mm256_and_ps(gt0(pdf_tri), finite), _mm256_xor_ps(is_zero3(rad_tri), all));
-    v3x8 rad = sel3(is_point, scale3(le, _mm256_div_ps(one, dist2)), sel3(is_far, le, rad_tri));
+    /* A point light's 1 / d^2, for a spot times its profile. */
+    __m256 point_scale = _mm256_div_ps(one, dist2);
+    const __m256 is_spot = _mm256_loadu_ps(l->is_spot);
+    __m256 spot_ok = all;
+    if (_mm256_movemask_ps(is_spot)) {
+        __m256 keep;
+        __m256 profile = spot8(l, _mm256_xor_ps(dot3(load3(l->q1), wi), _mm256_set1_ps(-0.0f)), &keep);
+        point_scale = sel(is_spot, _mm256_mul_ps(point_scale, profile), point_scale);
+        spot_ok = sel(is_spot, keep, all);
+    }
+    v3x8 rad = sel3(is_point, scale3(le, point_scale), sel3(is_far, le, rad_tri));
     __m256 pdf = sel(_mm256_or_ps(is_delta, is_env), pmf, pdf_tri);
     /* Directional: always; the environment: a pdf above zero; a point
-     * light: p not on it; a triangle: also a usable pdf and light towards p. */
+     * light: p not on it (a spot: also p inside its cone); a triangle: also
+     * a usable pdf and light towards p. */
     __m256 ok = _mm256_or_ps(_mm256_or_ps(is_dir, _mm256_and_ps(is_env, gt0(pdf))),
                              _mm256_and_ps(_mm256_andnot_ps(is_env, gt0(dist2)), _mm256_or_ps(is_point, ok_tri)));
+    ok = _mm256_and_ps(ok, spot_ok);
     if (mode == IL_DIFFUSE_NEE_PLAIN) /* il_direct_light_sample's own tests */
         ok = _mm256_and_ps(ok, _mm256_and_ps(gt0(pdf), _mm256_xor_ps(is_zero3(rad), all)));
 
@@ -252,7 +286,7 @@ IL_AVX2 static void nee8(lanes *l, float epsilon, il_diffuse_nee mode)
         ok = _mm256_and_ps(ok, _mm256_cmp_ps(cos_i, zero, _CMP_NLE_UQ)); /* !(cos_i <= 0) */
     }
 
-    /* il_shadow_ray(p, ng, q, lng) (a point light's lng is zero: its
+    /* il_shadow_ray(p, ng, q, lng) (a point or spot light's lng is zero: its
      * target is q itself); towards a directional light a ray along wi
      * without end.  And what the ray carries. */
     __m256 eps = _mm256_set1_ps(epsilon);
@@ -360,7 +394,10 @@ static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes
     l->pmf[k] = r->pmf;
     /* Masks: the sign bit set. */
     l->two_sided[k] = r->two_sided ? -1.0f : 0.0f;
-    l->is_point[k] = r->kind == IL_LREC_POINT ? -1.0f : 0.0f;
+    l->is_point[k] = r->kind == IL_LREC_POINT || r->kind == IL_LREC_SPOT ? -1.0f : 0.0f;
+    l->is_spot[k] = r->kind == IL_LREC_SPOT ? -1.0f : 0.0f;
+    l->cos_cutoff[k] = r->cos_cutoff;
+    l->spot_exponent[k] = r->spot_exponent;
     l->is_dir[k] = r->kind == IL_LREC_DIRECTIONAL ? -1.0f : 0.0f;
     l->is_env[k] = r->kind == IL_LREC_ENVIRONMENT ? -1.0f : 0.0f;
     if (r->kind == IL_LREC_ENVIRONMENT) {
@@ -386,6 +423,8 @@ static void copy_lane0(lanes *l, int k)
             v3s_[i][c][k] = v3s_[i][c][0];
     l->area[k] = l->area[0], l->pmf[k] = l->pmf[0], l->two_sided[k] = l->two_sided[0];
     l->is_point[k] = l->is_point[0], l->is_dir[k] = l->is_dir[0], l->is_env[k] = l->is_env[0];
+    l->is_spot[k] = l->is_spot[0], l->cos_cutoff[k] = l->cos_cutoff[0];
+    l->spot_exponent[k] = l->spot_exponent[0];
     l->is_phong[k] = l->is_phong[0], l->expo[k] = l->expo[0], l->pd[k] = l->pd[0];
     l->ux[k] = l->ux[0], l->uy[k] = l->uy[0];
 }

@@ -38,9 +38,10 @@ typedef enum il_diffuse_nee {
 } il_diffuse_nee;
 
 /* What was computed.  nee_done: the light sample was taken (the light
- * picked is a triangle of a mesh without authored normals, a point light, a
- * directional light or the environment: see il_light_rec; for a spot light
- * the caller samples the light itself), and `shadow` says
+ * picked is a triangle of a mesh without authored normals, a point or spot
+ * light, a directional light or the environment: see il_light_rec; for a
+ * triangle of a mesh with normals the caller samples the light itself), and
+ * `shadow` says
  * whether it casts shadow_ray carrying shadow_L.
  * next_done: the BSDF sample was taken (on a CPU with AVX2: always for a
  * Lambertian vertex, for a Phong one when u_lobe picks its diffuse lobe, the

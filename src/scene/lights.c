@@ -103,6 +103,10 @@ static il_light_rec light_rec(const il_scene *s, const il_light *l, float pmf)
     }
     case IL_LIGHTK_POINT:
         return (il_light_rec){.p0 = l->position, .radiance = l->intensity, .pmf = pmf, .kind = IL_LREC_POINT};
+    case IL_LIGHTK_SPOT:
+        return (il_light_rec){.p0 = l->position, .p1 = l->direction, .radiance = l->intensity, .pmf = pmf,
+                              .cos_cutoff = l->cos_cutoff, .spot_exponent = l->spot_exponent,
+                              .kind = IL_LREC_SPOT};
     case IL_LIGHTK_DIRECTIONAL: /* il_light_sample_at's wi, computed once */
         return (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = pmf,
                               .kind = IL_LREC_DIRECTIONAL};

@@ -85,20 +85,23 @@ typedef struct il_light {
 /* A light as the batched light sampling (methods/diffuse_wave.c) reads it,
  * in one record instead of four tables.  kind says which lights it takes:
  * a triangle of a mesh without authored normals (whose normal is
- * il_tri_geom.ng), a point light, a directional light, the environment
- * (sampled per vertex by il_environment_sample), each with a non-zero
- * selection probability pmf; IL_LREC_NONE for spot lights, which the
+ * il_tri_geom.ng), a point light, a spot light, a directional light, the
+ * environment (sampled per vertex by il_environment_sample), each with a
+ * non-zero selection probability pmf; IL_LREC_NONE for the others (a
+ * triangle of a mesh with normals, a light never selected), which the
  * scalar il_light_sample_at samples. */
 typedef enum il_lrec_kind {
-    IL_LREC_NONE = 0, IL_LREC_TRIANGLE, IL_LREC_POINT, IL_LREC_DIRECTIONAL, IL_LREC_ENVIRONMENT
+    IL_LREC_NONE = 0, IL_LREC_TRIANGLE, IL_LREC_POINT, IL_LREC_SPOT, IL_LREC_DIRECTIONAL, IL_LREC_ENVIRONMENT
 } il_lrec_kind;
 typedef struct il_light_rec {
-    il_vec3 p0, p1, p2;    /* TRIANGLE: the vertices; POINT: p0 the position;
+    il_vec3 p0, p1, p2;    /* TRIANGLE: the vertices; POINT, SPOT: p0 the position;
+                              SPOT: p1 the unit axis it shines along;
                               DIRECTIONAL: p0 the unit direction towards the light */
     il_vec3 ng;            /* TRIANGLE: the unit normal; else zero */
-    il_vec3 radiance;      /* TRIANGLE: emitted radiance; POINT: intensity; DIRECTIONAL: irradiance
-                              (ENVIRONMENT: only pmf is used) */
+    il_vec3 radiance;      /* TRIANGLE: emitted radiance; POINT, SPOT: intensity; DIRECTIONAL:
+                              irradiance (ENVIRONMENT: only pmf is used) */
     float area, pmf;       /* area: TRIANGLE */
+    float cos_cutoff, spot_exponent; /* SPOT: il_light's */
     bool two_sided;        /* TRIANGLE */
     il_lrec_kind kind;
 } il_light_rec;

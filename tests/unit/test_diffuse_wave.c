@@ -1,13 +1,13 @@
 /* il_diffuse_wave (methods/diffuse_wave.c) against the scalar code it
  * stands for, bit for bit: for thousands of vertices found by random rays
  * in scenes with one- and two-sided triangle lamps, a ball lamp with
- * authored normals, a point, a directional and a spot light, a sky, Lambertian,
+ * authored normals, a point, a directional and three spot lights (with and
+ * without a cos^n profile, one wider than a hemisphere), a sky, Lambertian,
  * Phong (exponents 20 and 300) and mirror surfaces, its light sample must
  * equal il_pt_step_at's (under MIS) and il_direct_light_sample's (plain),
  * and its BSDF sample il_bsdf_sample_dir_cos's (a Phong surface's diffuse
  * lobe; its glossy lobe is left to the caller).  Vertices it must leave to the caller (other
- * materials; spot lights and triangles of meshes with normals) must keep
- * their flags false.  On a CPU without AVX2 it takes nothing. */
+ * materials; triangles of meshes with normals) must keep their flags false.  On a CPU without AVX2 it takes nothing. */
 #include <string.h>
 
 #include "scene_build.h"
@@ -113,7 +113,7 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
             bool lobe_ours = diffuse || (phong && in[i].u_lobe < bp.diffuse_prob);
             const il_light *l = &s->lights[il_light_select(s, in[i].u_select)];
             bool takes = (l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals) ||
-                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_DIRECTIONAL ||
+                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_SPOT || l->kind == IL_LIGHTK_DIRECTIONAL ||
                          l->kind == IL_LIGHTK_ENVIRONMENT;
             if (out[i].next_done != (avx2 && lobe_ours) || out[i].nee_done != (avx2 && (diffuse || phong) && takes)) {
                 bad_flags++;
@@ -157,7 +157,7 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
 
 /* A room of Lambertian walls, a Phong floor and wall, and a mirror, lit by a
  * one-sided and a two-sided quad lamp, a ball lamp (authored normals), a
- * point light, the sun, a spot light and a sky. */
+ * point light, the sun, three spot lights and a sky. */
 static il_scene *mixed_room(void)
 {
     il_scene *s = new_scene();
@@ -183,8 +183,12 @@ static il_scene *mixed_room(void)
         {.type = IL_LIGHT_POINT, .position = {0.5f, 1.5f, 1}, .intensity = {2, 2, 2}},
         {.type = IL_LIGHT_DIRECTIONAL, .direction = {0.3f, -1, 0.2f}, .intensity = {1, 0.9f, 0.8f}},
         {.type = IL_LIGHT_SPOT, .position = {-1, 1.8f, 1}, .direction = {0.2f, -1, -0.3f},
-         .intensity = {3, 3, 3}, .spot_angle = 40.0f, .spot_exponent = 4.0f}};
-    for (int i = 0; i < 3; i++)
+         .intensity = {3, 3, 3}, .spot_angle = 40.0f, .spot_exponent = 4.0f},
+        {.type = IL_LIGHT_SPOT, .position = {1.2f, 1.7f, -0.5f}, .direction = {-0.4f, -1, 0.1f},
+         .intensity = {2, 1, 1}, .spot_angle = 25.0f},
+        {.type = IL_LIGHT_SPOT, .position = {0, 1.0f, 0.5f}, .direction = {0, 0, -1},
+         .intensity = {1, 1, 2}, .spot_angle = 120.0f, .spot_exponent = 2.0f}};
+    for (int i = 0; i < 5; i++)
         CHECK_OK(il_scene_add_light(s, &lights[i], &g_err), &g_err);
     il_environment_desc sky = {.radiance = v3(0.2f, 0.25f, 0.3f)}; /* seen through the open front */
     CHECK_OK(il_scene_set_environment(s, &sky, &g_err), &g_err);
