@@ -4,6 +4,9 @@
  *   il_ls_locate and il_ls_shaft_index give in turn (voxel, shaft,
  *   direction, distances), for random points and directions, directions
  *   along an axis or in an axis plane, and points on voxel faces;
+ * - il_ls_walk, the injection's voxel walk, reports exactly the crossings
+ *   (voxel, shaft, direction, length) of the walk through that plain chain,
+ *   for random segments (inside and outside the grid, finite and not);
  * - the in-shaft occlusion test, which reads each shaft's candidate list
  *   from its 32-byte record (the first candidates inline, the rest in the
  *   voxel's array), agrees with a brute-force test of the ray against every
@@ -95,6 +98,94 @@ static void check_find(const il_linespace *ls, il_pcg32 *r)
     CHECK(bad == 0);
 }
 
+/* Crossings of one segment, as il_ls_walk reports them. */
+typedef struct crossing {
+    uint32_t voxel, shaft, dir;
+    float length;
+} crossing;
+typedef struct crossings {
+    crossing c[4096];
+    uint32_t n;
+} crossings;
+
+static void record(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length)
+{
+    crossings *cs = user;
+    if (cs->n < 4096)
+        cs->c[cs->n++] = (crossing){voxel, shaft, dir, length};
+}
+
+/* The walk as first written: every cell through il_ls_cell_of,
+ * il_ls_cell_box, il_ls_locate and il_ls_shaft_index. */
+static void plain_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, crossings *out)
+{
+    float t0 = 0.0f, t1 = t_end;
+    for (int i = 0; i < 3; i++) {
+        float di = v3_get(d, i), oi = v3_get(o, i);
+        float lo = v3_get(ls->lo, i), hi = v3_get(ls->hi, i);
+        if (di == 0.0f) {
+            if (oi < lo || oi > hi)
+                return;
+            continue;
+        }
+        float a = (lo - oi) / di, b = (hi - oi) / di;
+        t0 = il_maxf(t0, a < b ? a : b);
+        t1 = il_minf(t1, a < b ? b : a);
+    }
+    if (!(t1 > t0))
+        return;
+    const float step_eps = 1e-5f * v3_max_comp(ls->vsize);
+    float t = t0;
+    for (int guard = 0; t < t1 && guard < 100000; guard++) {
+        il_vec3 p = v3_fma(o, d, il_minf(t + step_eps, 0.5f * (t + t1)));
+        uint32_t cc[3], fi, pi, fo, po;
+        if (!il_ls_cell_of(ls, p, cc))
+            return;
+        il_vec3 lo;
+        il_ls_cell_box(ls, cc, &lo);
+        float tin, tout;
+        if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout))
+            return;
+        float t_next = il_minf(t1, v3_dot(v3_sub(p, o), d) + tout);
+        if (!(t_next > t))
+            t_next = t + step_eps;
+        int32_t v = ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])];
+        if (v >= 0) {
+            uint32_t dir, shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, &dir);
+            record(out, (uint32_t)v, shaft, dir, t_next - t);
+        }
+        t = t_next;
+    }
+}
+
+static void check_walk(const il_linespace *ls, il_pcg32 *r)
+{
+    static crossings want, got;
+    uint64_t total = 0;
+    uint32_t bad = 0;
+    il_vec3 size = v3_sub(ls->hi, ls->lo);
+    for (uint32_t i = 0; i < 20000; i++) {
+        /* Origins in a box 1.5 times the grid's (some outside it). */
+        il_vec3 o = v3(ls->lo.x + size.x * (1.5f * rnd(r) - 0.25f), ls->lo.y + size.y * (1.5f * rnd(r) - 0.25f),
+                       ls->lo.z + size.z * (1.5f * rnd(r) - 0.25f));
+        il_vec3 d = random_dir(r);
+        float t_end = i % 3u == 0 ? INFINITY : v3_length(size) * rnd(r);
+        want.n = got.n = 0;
+        plain_walk(ls, o, d, t_end, &want);
+        il_ls_walk(ls, o, d, t_end, record, &got);
+        total += want.n;
+        bool same = want.n == got.n;
+        for (uint32_t k = 0; same && k < want.n; k++)
+            same = want.c[k].voxel == got.c[k].voxel && want.c[k].shaft == got.c[k].shaft &&
+                   want.c[k].dir == got.c[k].dir && want.c[k].length == got.c[k].length;
+        bad += !same;
+    }
+    printf("il_ls_walk: %llu crossings of 20000 segments, %u segments differ from the plain walk\n",
+           (unsigned long long)total, bad);
+    CHECK(total > 10000);
+    CHECK(bad == 0);
+}
+
 static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg32 *r)
 {
     il_ls_settings set = {.grid = grid, .n = n};
@@ -104,6 +195,7 @@ static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg
         return;
     }
     check_find(&ls, r);
+    check_walk(&ls, r);
     /* Lists past the inline candidates are what this exercises. */
     uint64_t long_lists = 0;
     for (uint64_t k = 0; k < ls.num_stored; k++) {

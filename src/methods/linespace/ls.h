@@ -224,6 +224,16 @@ bool il_ls_find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *voxel, u
 
 /* ----------------------------------------------------- injection */
 
+/* What il_ls_walk reports for each voxel with triangles the segment
+ * crosses: the voxel, the shaft and direction its line runs through there,
+ * and the length of the segment inside the voxel. */
+typedef void (*il_ls_visit)(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length);
+/* Walks the segment o + t d, t in [0, t_end] (d unit; t_end may be
+ * infinite), clipped to the grid, voxel by voxel in order, and calls
+ * visit for each voxel with triangles (empty ones are crossed silently).
+ * A cell's exit point decides the next cell, nudged 1e-5 voxel along d. */
+void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_ls_visit visit, void *user);
+
 typedef struct il_ls_inject_result {
     uint64_t deposits;
     uint64_t rays;

@@ -72,75 +72,16 @@ static void push(chunk *c, uint64_t entry, il_vec3 v)
     c->d[c->count++] = (deposit){entry, {v.x, v.y, v.z}};
 }
 
-/* Where the line p + t d leaves the cell with corner lo: il_ls_locate's
- * t_out by the same operations (so the walk steps exactly as it would
- * with it), without the faces and patches an empty cell does not need. */
-static inline float cell_exit(il_vec3 lo, il_vec3 size, il_vec3 p, il_vec3 d)
-{
-    float tf = INFINITY;
-    for (int i = 0; i < 3; i++) {
-        float di = v3_get(d, i);
-        if (di == 0.0f) /* parallel to the slab: it never bounds the line */
-            continue;
-        float inv = 1.0f / di, l = v3_get(lo, i), h = l + v3_get(size, i), pi = v3_get(p, i);
-        float far = di > 0.0f ? (h - pi) * inv : (l - pi) * inv;
-        tf = far < tf ? far : tf;
-    }
-    return tf;
-}
+/* What a segment leaves in one voxel it crosses (il_ls_walk's visit). */
+typedef struct deposit_ctx {
+    chunk *c;
+    il_vec3 power;
+} deposit_ctx;
 
-/* Walks the voxels the segment o + t d, t in [0, t_end] (d unit) crosses
- * and deposits power * (its length in each) into the shaft of its line.
- * A voxel with triangles is located by il_ls_find (the lookups' fast
- * path); of an empty one, which il_ls_find turns down, the walk needs only
- * the exit (cell_exit). */
-static void deposit_segment(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_vec3 power,
-                            chunk *c)
+static void deposit_visit(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length)
 {
-    /* Clip to the grid box (slab method). */
-    float t0 = 0.0f, t1 = t_end;
-    for (int i = 0; i < 3; i++) {
-        float di = v3_get(d, i), oi = v3_get(o, i);
-        float lo = v3_get(ls->lo, i), hi = v3_get(ls->hi, i);
-        if (di == 0.0f) {
-            if (oi < lo || oi > hi)
-                return;
-            continue;
-        }
-        float a = (lo - oi) / di, b = (hi - oi) / di;
-        if (a > b) {
-            float tmp = a;
-            a = b;
-            b = tmp;
-        }
-        t0 = il_maxf(t0, a);
-        t1 = il_minf(t1, b);
-    }
-    if (!(t1 > t0))
-        return;
-    const float step_eps = 1e-5f * v3_max_comp(ls->vsize);
-    float t = t0;
-    for (int guard = 0; t < t1 && guard < 100000; guard++) {
-        /* The cell the segment is in just after t. */
-        il_vec3 p = v3_fma(o, d, il_minf(t + step_eps, 0.5f * (t + t1)));
-        uint32_t voxel, shaft, dir;
-        float tin, tout;
-        bool located = il_ls_find(ls, p, d, &voxel, &shaft, &dir, &tin, &tout);
-        if (!located) {
-            uint32_t cc[3];
-            if (!il_ls_cell_of(ls, p, cc))
-                return;
-            il_vec3 lo;
-            il_ls_cell_box(ls, cc, &lo);
-            tout = cell_exit(lo, ls->vsize, p, d);
-        }
-        float t_next = il_minf(t1, v3_dot(v3_sub(p, o), d) + tout);
-        if (!(t_next > t))
-            t_next = t + step_eps;
-        if (located)
-            push(c, (uint64_t)voxel << 32 | (2u * shaft + dir), v3_scale(power, t_next - t));
-        t = t_next;
-    }
+    deposit_ctx *dc = user;
+    push(dc->c, (uint64_t)voxel << 32 | (2u * shaft + dir), v3_scale(dc->power, length));
 }
 
 /* The chunk's deposits' slots, looked up after its paths are traced: the
@@ -182,8 +123,10 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
         /* Segment `bounces` has scattered that many times: the first
          * (straight from the light) is direct light, which the sampling
          * pass takes by shadow rays. */
-        if (bounces > 0)
-            deposit_segment(ls, ray.org, ray.dir, found ? hit.t : INFINITY, power, c);
+        if (bounces > 0) {
+            deposit_ctx dc = {c, power};
+            il_ls_walk(ls, ray.org, ray.dir, found ? hit.t : INFINITY, deposit_visit, &dc);
+        }
         if (!found || bounces >= depth)
             break;
         il_surface surf;
