@@ -92,14 +92,16 @@ static void resolve_slots(const il_linespace *ls, chunk *c)
 {
     enum { AHEAD = 8 };
     for (size_t i = 0; i < c->count; i++) {
-        if (i + AHEAD < c->count) {
+        if (i + AHEAD < c->count) { /* the bit word of a later deposit's shaft */
             uint64_t a = c->d[i + AHEAD].entry;
-            __builtin_prefetch(&ls->words[(a >> 32) * ls->mask_words + (uint32_t)a / 128u]);
+            uint32_t shaft = (uint32_t)a >> 1;
+            __builtin_prefetch(&ls->words[(a >> 32) * ls->mask_words + shaft / 64u]);
         }
         deposit *e = &c->d[i];
-        uint32_t key = (uint32_t)e->entry;
-        int64_t slot = il_ls_slot(ls, (uint32_t)(e->entry >> 32), key >> 1);
-        e->entry = slot >= 0 ? 2u * (uint64_t)slot + (key & 1u) : NO_ENTRY;
+        uint32_t voxel = (uint32_t)(e->entry >> 32), shaft = (uint32_t)e->entry >> 1,
+                 dir = (uint32_t)e->entry & 1u;
+        int64_t slot = il_ls_slot(ls, voxel, shaft);
+        e->entry = slot >= 0 ? 2u * (uint64_t)slot + dir : NO_ENTRY;
     }
 }
 
