@@ -177,8 +177,8 @@ IL_AVX2 static __m256 spot8(const lanes *l, __m256 c, __m256 *keep)
     *keep = _mm256_xor_ps(_mm256_or_ps(below, behind), all);
     float cc[LANES], keep_[LANES], scale[LANES];
     _mm256_storeu_ps(cc, c);
-    _mm256_storeu_ps(keep_, _mm256_and_ps(*keep, _mm256_loadu_ps(l->is_spot)));
-    for (int k = 0; k < LANES; k++)
+    _mm256_storeu_ps(keep_, *keep);
+    for (int k = 0; k < LANES; k++) /* other lanes' exponent is 0: no powf */
         scale[k] = keep_[k] != 0.0f && l->spot_exponent[k] > 0.0f ? powf(cc[k], l->spot_exponent[k]) : 1.0f;
     return _mm256_loadu_ps(scale);
 }

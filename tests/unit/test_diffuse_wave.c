@@ -6,8 +6,9 @@
  * Phong (exponents 20 and 300) and mirror surfaces, its light sample must
  * equal il_pt_step_at's (under MIS) and il_direct_light_sample's (plain),
  * and its BSDF sample il_bsdf_sample_dir_cos's (a Phong surface's diffuse
- * lobe; its glossy lobe is left to the caller).  Vertices it must leave to the caller (other
- * materials; triangles of meshes with normals) must keep their flags false.  On a CPU without AVX2 it takes nothing. */
+ * lobe; its glossy lobe is left to the caller).  Vertices it must leave
+ * to the caller (other materials; triangles of meshes with normals) must
+ * keep their flags false.  On a CPU without AVX2 it takes nothing. */
 #include <string.h>
 
 #include "scene_build.h"
@@ -113,8 +114,8 @@ static void check_scene(const il_scene *s, il_vec3 lo, il_vec3 hi, uint32_t *nee
             bool lobe_ours = diffuse || (phong && in[i].u_lobe < bp.diffuse_prob);
             const il_light *l = &s->lights[il_light_select(s, in[i].u_select)];
             bool takes = (l->kind == IL_LIGHTK_AREA && !s->meshes[l->mesh].normals) ||
-                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_SPOT || l->kind == IL_LIGHTK_DIRECTIONAL ||
-                         l->kind == IL_LIGHTK_ENVIRONMENT;
+                         l->kind == IL_LIGHTK_POINT || l->kind == IL_LIGHTK_SPOT ||
+                         l->kind == IL_LIGHTK_DIRECTIONAL || l->kind == IL_LIGHTK_ENVIRONMENT;
             if (out[i].next_done != (avx2 && lobe_ours) || out[i].nee_done != (avx2 && (diffuse || phong) && takes)) {
                 bad_flags++;
                 continue;
