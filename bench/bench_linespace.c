@@ -4,7 +4,8 @@
  *
  *   bench_linespace SCENE [--variant diffuse|glossy|mirror|glass]
  *                   [--inject-rays N] [--grid N] [--linespace-n N] [--blur R]
- *                   [--fallback on|off] [--occlusion-test on|off]
+ *                   [--fallback on|off] [--occlusion-test on|off] [--coarse on|off]
+ *                   [--coarse-below K]
  *                   [--max-depth D] [--ref-spp N] [--time S] [--spp N]
  *                   [--threads T] [--width W] [--height H]
  *
@@ -52,6 +53,10 @@ static bool ls_option(const char *a, const char *v, void *user)
         o->ld.no_fallback = !strcmp(v, "off");
     else if (!strcmp(a, "--occlusion-test"))
         o->ld.no_occlusion_test = !strcmp(v, "off");
+    else if (!strcmp(a, "--coarse"))
+        o->ld.coarse = !strcmp(v, "on");
+    else if (!strcmp(a, "--coarse-below"))
+        o->ld.coarse_below = (uint32_t)atoi(v);
     else if (!strcmp(a, "--max-depth"))
         o->max_depth = (uint32_t)atoi(v);
     else if (!strcmp(a, "--time"))
@@ -162,14 +167,15 @@ int main(int argc, char **argv)
     }
     double px = (double)w * h;
     double ls_rate = px * st_ls.spp / l->seconds_sample, pt_rate = px * st_pt.spp / st_pt.seconds;
-    printf("%-10s %-8s %4s %9s %9s %6s %8s %8s %8s %9s %6s %8s %8s %8s %8s\n", "scene", "variant", "thr",
-           "pt_spp/s", "ls_spp/s", "ratio", "build_s", "inject_s", "mem_MB", "shafts", "found%",
+    double lookups = l->lookups ? (double)l->lookups : 1.0;
+    printf("%-10s %-8s %4s %9s %9s %6s %8s %8s %8s %9s %6s %7s %8s %8s %8s %8s\n", "scene", "variant", "thr",
+           "pt_spp/s", "ls_spp/s", "ratio", "build_s", "inject_s", "mem_MB", "shafts", "found%", "coarse%",
            "sample_s", "rmse_pt", "rmse_ls", "rmse_pt+");
-    printf("%-10s %-8s %4d %9.3g %9.3g %6.2f %8.3f %8.3f %8.1f %9llu %6.1f %8.2f %8.4f %8.4f %8.4f\n",
+    printf("%-10s %-8s %4d %9.3g %9.3g %6.2f %8.3f %8.3f %8.1f %9llu %6.1f %7.1f %8.2f %8.4f %8.4f %8.4f\n",
            b.scene_name, o.variant, b.rd.threads, pt_rate, ls_rate, ls_rate / pt_rate, l->seconds_build,
            l->seconds_inject, l->memory_bytes / 1048576.0, (unsigned long long)l->shafts,
-           l->lookups ? 100.0 * (double)l->lookup_hits / (double)l->lookups : 0.0, l->seconds_sample,
-           rel_rmse(&pt, &ref), rel_rmse(&ls, &ref), rel_rmse(&pt_tot, &ref));
+           100.0 * (double)l->lookup_hits / lookups, 100.0 * (double)l->lookup_coarse / lookups,
+           l->seconds_sample, rel_rmse(&pt, &ref), rel_rmse(&ls, &ref), rel_rmse(&pt_tot, &ref));
     printf("# reference %u spp in %.1f s; equal sampling time: pt %u spp, linespace %u spp (%llu paths); "
            "pt with build+inject time too: %u spp\n",
            st_ref.spp, st_ref.seconds, st_pt.spp, st_ls.spp, (unsigned long long)l->inject_rays, st_tot.spp);

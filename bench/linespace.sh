@@ -1,9 +1,10 @@
 #!/bin/sh
 # The Linespace benchmark of issue 7: the Cornell box with its tall block
 # diffuse, glossy (Phong 50), mirror and glass, and the atrium; 2 threads,
-# max depth 4, 128x128; the default Linespace (grid 8, N 4, 1M paths) and
-# N 2; one second of sampling each (and 0.2 s for the diffuse box) against the
-# path tracer (bench_linespace.c explains the columns).  Prints figures, never judges.
+# max depth 4, 128x128; the default Linespace (grid 8, N 4, 1M paths), N 2
+# and N 4 with the coarse level (--coarse on); one second of sampling each
+# (and 0.2 s for the diffuse box) against the path tracer
+# (bench_linespace.c explains the columns).  Prints figures, never judges.
 # Usage: bench/linespace.sh [BUILD_DIR] (run from the repository root).
 set -e
 B=${1:-build}/bench/bench_linespace
@@ -19,9 +20,11 @@ run() {
 for v in diffuse glossy mirror glass; do
   run cornell --variant $v
   run cornell --variant $v --linespace-n 2
+  run cornell --variant $v --coarse on
 done
 # Equal time at a fifth of a second, where the path tracer's noise is larger.
 run cornell --time 0.2
 run cornell --time 0.2 --linespace-n 2
 run atrium --ref-spp 2048
+run atrium --ref-spp 2048 --coarse on
 run atrium --ref-spp 2048 --grid 16 --linespace-n 2

@@ -609,6 +609,12 @@ typedef struct il_linespace_desc {
                                   tracing on (fallback is on by default) */
     bool no_solid_angle;       /* normalise every shaft as if all subtended the same
                                   solid angle (the thesis's reading; grid patterns) */
+    bool coarse;               /* build a coarser level too (N / its smallest prime
+                                  factor patches per side; N > 1) and read it where
+                                  an entry got too few deposits, before falling back
+                                  to tracing (off by default: docs/linespace.md) */
+    uint32_t coarse_below;     /* too few: below this many, 1 to 255 (1: only empty
+                                  entries); 0 means 32 */
     float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
     float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
 } il_linespace_desc;
@@ -625,6 +631,7 @@ typedef struct il_linespace_stats {
     uint64_t injected_segments; /* (segment, voxel) deposits */
     uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded; /* occluded: the entry held
                                   light but the in-shaft test found geometry first */
+    uint64_t lookup_coarse;    /* of lookup_hits, those read from the coarse level */
     double seconds_build;      /* grid, shafts and candidate lists */
     double seconds_inject;
     double seconds_sample;     /* the camera pass */

@@ -25,13 +25,18 @@ const char cli_linespace_help[] =
     "                         gives no light (off)\n"
     "  --solid-angle on|off   normalise each shaft by its own measure (default on)\n"
     "                         or as if all shafts were equal (off: the thesis)\n"
+    "  --coarse on|off        an entry with too few deposits reads a coarser level\n"
+    "                         (N / its smallest prime factor) before falling back\n"
+    "                         (default off)\n"
+    "  --coarse-below K       too few: below K deposits, 1 to 255 (default 32;\n"
+    "                         1: only empty entries)\n"
     "  --glossy-n1 E          Phong exponents below E read the Linespace (default 10)\n"
     "  --glossy-n2 E          Phong exponents above E trace on, blend between\n"
     "                         (default 100); both 0.001 to 10^6\n";
 
 static const char *const names[] = {"--grid", "--linespace-n", "--inject-rays", "--inject-depth",
                                     "--blur", "--occlusion-test", "--fallback", "--solid-angle",
-                                    "--glossy-n1", "--glossy-n2"};
+                                    "--coarse", "--coarse-below", "--glossy-n1", "--glossy-n2"};
 #define COUNT(a) (sizeof a / sizeof a[0])
 
 /* An on/off option stored as its "no_" flag. */
@@ -67,6 +72,10 @@ static bool parse_value(const char *name, const char *v, il_linespace_desc *d)
         return parse_onoff(name, v, &d->no_fallback);
     if (!strcmp(name, "--solid-angle"))
         return parse_onoff(name, v, &d->no_solid_angle);
+    if (!strcmp(name, "--coarse"))
+        return cli_parse_on_off(name, v, &d->coarse);
+    if (!strcmp(name, "--coarse-below"))
+        return cli_parse_u32(name, v, 1, 255, &d->coarse_below);
     ok = cli_parse_double(name, v, 0.001, 1e6, &x);
     if (!strcmp(name, "--glossy-n1"))
         d->glossy_n1 = (float)x;
@@ -116,6 +125,7 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
     cJSON_AddNumberToObject(r, "lookup_hits", (double)s->lookup_hits);
     cJSON_AddNumberToObject(r, "lookup_empty", (double)s->lookup_empty);
     cJSON_AddNumberToObject(r, "lookup_occluded", (double)s->lookup_occluded);
+    cJSON_AddNumberToObject(r, "lookup_coarse", (double)s->lookup_coarse);
     cJSON_AddNumberToObject(r, "seconds_build", s->seconds_build);
     cJSON_AddNumberToObject(r, "seconds_inject", s->seconds_inject);
     cJSON_AddNumberToObject(r, "seconds_sample", s->seconds_sample);
@@ -124,11 +134,13 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
 void cli_linespace_summary(const il_linespace_stats *s)
 {
     double hit = s->lookups ? 100.0 * (double)s->lookup_hits / (double)s->lookups : 0.0;
+    double coarse = s->lookups ? 100.0 * (double)s->lookup_coarse / (double)s->lookups : 0.0;
     fprintf(stderr,
             "illum: linespace: grid %ux%ux%u, N %u, %llu voxels, %llu shafts, %.1f MB; %llu paths "
-            "injected; %.1f%% of lookups found light (build %.2f s, inject %.2f s, sample %.2f s)\n",
+            "injected; %.1f%% of lookups found light, %.1f%% of them from the coarse level "
+            "(build %.2f s, inject %.2f s, sample %.2f s)\n",
             s->grid[0], s->grid[1], s->grid[2], s->n, (unsigned long long)s->voxels,
             (unsigned long long)s->shafts, (double)s->memory_bytes / (1024.0 * 1024.0),
-            (unsigned long long)s->inject_rays, hit, s->seconds_build, s->seconds_inject,
-            s->seconds_sample);
+            (unsigned long long)s->inject_rays, hit, hit > 0.0 ? 100.0 * coarse / hit : 0.0,
+            s->seconds_build, s->seconds_inject, s->seconds_sample);
 }

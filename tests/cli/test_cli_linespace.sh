@@ -5,7 +5,7 @@
 
 expect_exit 0 "render --method linespace --help" -- "$ILLUM" render --method linespace --help
 for o in --grid --linespace-n --inject-rays --inject-depth --blur --occlusion-test --fallback \
-         --solid-angle --glossy-n1 --glossy-n2; do
+         --solid-angle --coarse --coarse-below --glossy-n1 --glossy-n2; do
     expect_stdout -- "$o" "linespace help lists $o"
 done
 
@@ -15,7 +15,7 @@ expect_file ls.exr "render linespace"
 expect_stderr "illum: linespace: grid 4x4x4, N 2" "render linespace: summary line"
 for k in '"method":[[:space:]]*"linespace"' '"linespace":' '"inject_rays":[[:space:]]*20000' '"voxels"' \
          '"shafts"' '"candidates"' '"memory_bytes"' '"injected_segments"' '"lookups"' '"lookup_hits"' \
-         '"lookup_empty"' '"lookup_occluded"' '"seconds_build"' '"seconds_inject"' '"seconds_sample"' \
+         '"lookup_empty"' '"lookup_occluded"' '"lookup_coarse"' '"seconds_build"' '"seconds_inject"' '"seconds_sample"' \
          '"n":[[:space:]]*2'; do
     checks=$((checks + 1))
     grep -q "$k" ls.json || fail "ls.json lacks $k"
@@ -27,6 +27,12 @@ expect_file var.pfm "render linespace, variants"
 expect_exit 0 "render linespace, glossy and glass" -- "$ILLUM" render cornell-spheres --method linespace \
     --inject-rays 20000 --width 16 --height 16 --spp 1 -q -o spheres.pfm
 expect_file spheres.pfm "render linespace, cornell-spheres"
+expect_exit 0 "render linespace, coarse level" -- "$ILLUM" render cornell --method linespace --inject-rays 20000 \
+    --grid 4 --coarse on --coarse-below 4 --width 16 --height 16 --spp 2 -o coarse.pfm --stats coarse.json
+expect_file coarse.pfm "render linespace, coarse level"
+expect_stderr "from the coarse level" "render linespace, coarse level: summary line"
+checks=$((checks + 1))
+grep -q '"lookup_coarse":[[:space:]]*[1-9]' coarse.json || fail "coarse.json: no lookup read the coarse level"
 
 # Bad values and options of the wrong method: exit 1 or 2, no output.
 expect_exit 1 "--grid 0" -- "$ILLUM" render cornell --method linespace --grid 0 -q -o bad.exr
@@ -36,6 +42,9 @@ expect_exit 1 "--inject-rays 0" -- "$ILLUM" render cornell --method linespace --
 expect_exit 1 "--blur -1" -- "$ILLUM" render cornell --method linespace --blur -1 -q -o bad.exr
 expect_exit 1 "--fallback maybe" -- "$ILLUM" render cornell --method linespace --fallback maybe -q -o bad.exr
 expect_stderr "neither on nor off" "--fallback maybe"
+expect_exit 1 "--coarse-below 0" -- "$ILLUM" render cornell --method linespace --coarse-below 0 -q -o bad.exr
+expect_exit 1 "--coarse-below 256" -- "$ILLUM" render cornell --method linespace --coarse-below 256 -q -o bad.exr
+expect_exit 1 "--coarse sometimes" -- "$ILLUM" render cornell --method linespace --coarse sometimes -q -o bad.exr
 expect_exit 1 "--glossy-n2 below n1" -- "$ILLUM" render cornell --method linespace --glossy-n1 50 \
     --glossy-n2 20 -q -o bad.exr
 expect_stderr "below --glossy-n1" "--glossy-n2 below n1"

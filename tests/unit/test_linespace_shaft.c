@@ -8,7 +8,14 @@
  *   so the whole chord, and the segment on it, is inside);
  * - the shaft measures add up to 2 pi V before scaling (quadrature within
  *   2%), and agree with a Monte Carlo count of random (point, direction)
- *   pairs falling into each shaft. */
+ *   pairs falling into each shaft;
+ * - the coarse level (N_c = N / its smallest prime factor): each shaft's
+ *   coarse shaft joins the same two faces through the coarse patches that
+ *   hold its own (corners inside them), every coarse shaft holds
+ *   (N / N_c)^4 shafts, and its measure, integrated at N_c, is the sum of
+ *   theirs integrated at N (on the same midpoints, 48 per face side, so
+ *   equal but for rounding: a shaft counted in the wrong coarse one
+ *   shows). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -146,6 +153,57 @@ int main(void)
             free(hits);
         }
         free(m);
+    }
+
+    /* The coarse level. */
+    CHECK(il_ls_coarse_n(1) == 0 && il_ls_coarse_n(2) == 1 && il_ls_coarse_n(3) == 1 &&
+          il_ls_coarse_n(4) == 2 && il_ls_coarse_n(6) == 3 && il_ls_coarse_n(8) == 4);
+    const uint32_t fine_n[4] = {2, 4, 6, 8};
+    for (int t = 0; t < 4; t++) {
+        uint32_t n = fine_n[t], nc = il_ls_coarse_n(n), ns = il_ls_num_shafts(n), ncs = il_ls_num_shafts(nc);
+        uint32_t k = n / nc, *children = calloc(ncs, sizeof(uint32_t)), bad = 0;
+        float *m = malloc(ns * sizeof(float)), *mc = malloc(ncs * sizeof(float));
+        double *sum = calloc(ncs, sizeof(double));
+        il_ls_shaft_measures(size, n, 48u / n, m);
+        il_ls_shaft_measures(size, nc, 48u / nc, mc);
+        for (uint32_t sh = 0; sh < ns; sh++) {
+            uint32_t c = il_ls_coarse_shaft(n, sh);
+            if (c >= ncs) {
+                bad++;
+                continue;
+            }
+            children[c]++;
+            sum[c] += m[sh];
+            uint32_t fa, pa, fb, pb, ca, qa, cb, qb;
+            il_ls_shaft_patches(n, sh, &fa, &pa, &fb, &pb);
+            il_ls_shaft_patches(nc, c, &ca, &qa, &cb, &qb);
+            il_vec3 corners[4];
+            bool inside = ca == fa && cb == fb;
+            il_ls_patch_corners(lo, size, n, fa, pa, corners);
+            for (int q = 0; q < 4; q++)
+                inside = inside && in_patch(lo, size, nc, ca, qa, corners[q], 1e-5f);
+            il_ls_patch_corners(lo, size, n, fb, pb, corners);
+            for (int q = 0; q < 4; q++)
+                inside = inside && in_patch(lo, size, nc, cb, qb, corners[q], 1e-5f);
+            bad += !inside;
+        }
+        uint32_t wrong_count = 0;
+        double worst = 0.0;
+        for (uint32_t c = 0; c < ncs; c++) {
+            wrong_count += children[c] != k * k * k * k;
+            double e = fabs(sum[c] / mc[c] - 1.0);
+            worst = e > worst ? e : worst;
+        }
+        printf("N=%u -> %u: %u shafts outside their coarse shaft, %u coarse shafts with other than %u, "
+               "measure sums within %.3f%%\n",
+               n, nc, bad, wrong_count, k * k * k * k, 100.0 * worst);
+        CHECK(bad == 0);
+        CHECK(wrong_count == 0);
+        CHECK(worst < 1e-4);
+        free(children);
+        free(m);
+        free(mc);
+        free(sum);
     }
     return check_report();
 }

@@ -34,6 +34,8 @@ typedef struct il_ls_settings {
     uint32_t inject_depth;  /* bounces of a light path (segments after the first hit) */
     float blur;             /* fraction of the smallest voxel side */
     bool occlusion_test, fallback, solid_angle;
+    bool coarse;            /* read the coarse level where an entry is empty */
+    uint32_t coarse_below;  /* entries with fewer deposits count as empty then */
     float n1, n2;           /* glossy thresholds on the Phong exponent */
     uint32_t max_depth;     /* of the camera paths */
 } il_ls_settings;
@@ -154,6 +156,22 @@ typedef struct il_ls_tri {
     uint32_t mesh, prim;
 } il_ls_tri;
 
+/* The coarse level (docs/linespace.md, "Coarse level"): the same voxels
+ * with N_c = N / (N's smallest prime factor) patches per face side, so each
+ * patch lies inside one coarse patch and each shaft inside one coarse shaft
+ * (the same pair of faces).  A coarse entry holds the radiance of all the
+ * light the injection left in its stored shafts, over their summed
+ * measure: the mean over more lines, read where a shaft's own entry got no
+ * deposit, so that fewer lookups fall back to tracing. */
+typedef struct il_ls_coarse {
+    float rgb[3];
+    uint32_t filled;               /* 1 when some deposit reached it */
+} il_ls_coarse;
+/* N_c for N patches per side; 0 for N = 1 (no coarser level). */
+uint32_t il_ls_coarse_n(uint32_t n);
+/* The coarse shaft (at N_c = il_ls_coarse_n(n)) holding shaft `shaft` of N. */
+uint32_t il_ls_coarse_shaft(uint32_t n, uint32_t shaft);
+
 typedef struct il_linespace {
     il_vec3 lo, hi;              /* the grid's box */
     il_vec3 vsize;               /* one voxel */
@@ -179,6 +197,10 @@ typedef struct il_linespace {
                                     lists (at most IL_LS_DENSE), for the
                                     occlusion test; none for a denser one */
     float *measure;              /* num_shafts: il_ls_shaft_measures of a voxel */
+    uint32_t coarse_n;           /* the coarse level's patches per side; 0: none */
+    uint32_t num_coarse;         /* its shafts per voxel, 15 coarse_n^4 */
+    uint16_t *coarse_of;         /* num_shafts: the coarse shaft holding each shaft */
+    il_ls_coarse *coarse;        /* num_voxels * num_coarse * 2: [voxel][shaft][dir] */
     uint64_t num_stored, num_cand, num_overflow;
 } il_linespace;
 
@@ -258,6 +280,10 @@ typedef enum il_ls_lookup_status {
  * as the Linespace holds it: the shaft and direction of the line through p
  * along -w in p's voxel. */
 il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L);
+/* The same, and *coarse (when not NULL) says whether an empty entry was
+ * answered by the coarse level. */
+il_ls_lookup_status il_ls_lookup_level(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
+                                       bool *coarse);
 
 /* The in-shaft occlusion test: whether a triangle of the shaft's candidate
  * list (or, for an overflowing shaft, anything in the scene) lies on the
@@ -270,8 +296,10 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
  * in three steps, each done for a whole wave of lookups before the next
  * (the sampling pass): il_ls_probe_at finds the voxel,
  * shaft and direction of (x, w) and starts fetching the shaft's bit word;
- * il_ls_probe_slot finds its slot, when its entry holds deposits, and
- * starts fetching its record; il_ls_read_probe, called with the same x and w,
+ * il_ls_probe_slot finds its slot, when its entry holds deposits (or, when
+ * it holds none and the coarse level is built, the coarse entry to read
+ * instead, and the slot too for the shaft's candidates), and starts
+ * fetching them; il_ls_read_probe, called with the same x and w,
  * finishes the read.  The lookup is bound by cache misses on the
  * Linespace's large arrays, which a wave's probes overlap.  Given `ray`,
  * il_ls_read_probe leaves an occlusion test that must trace the scene (a
@@ -280,7 +308,9 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
 typedef struct il_ls_probe {
     bool found;                  /* a voxel and shaft for the line */
     uint32_t voxel, shaft, dir;
-    int64_t slot;                /* -1: nothing to read */
+    int64_t slot;                /* -1: no record to read (none stored, or its
+                                    entry empty and no coarse entry to read) */
+    int64_t coarse;              /* the coarse entry read instead of an empty one, or -1 */
     float t_in;
 } il_ls_probe;
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr);

@@ -66,6 +66,8 @@ void il_ls_free(il_linespace *ls)
     free(ls->tri_base);
     free(ls->tri);
     free(ls->measure);
+    free(ls->coarse_of);
+    free(ls->coarse);
     memset(ls, 0, sizeof *ls);
 }
 
@@ -79,7 +81,10 @@ uint64_t il_ls_memory(const il_linespace *ls)
            v * ls->mask_words * sizeof(il_ls_word) +
            (v + 1) * sizeof(uint64_t) * 4 + ls->num_stored * sizeof(il_ls_rec) +
            ncand * sizeof(uint8_t) + ntri * sizeof(il_ls_tri) +
-           (uint64_t)ls->num_shafts * sizeof(float);
+           (uint64_t)ls->num_shafts * sizeof(float) +
+           (ls->coarse ? (uint64_t)ls->num_shafts * sizeof(uint16_t) +
+                             v * ls->num_coarse * 2u * sizeof(il_ls_coarse)
+                       : 0u);
 }
 
 int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft)
@@ -296,6 +301,27 @@ static il_status bin_triangles(const il_scene *scene, il_linespace *ls, uint32_t
     return IL_OK;
 }
 
+/* The coarse level's table (each shaft's coarse shaft) and its entries,
+ * zero until the injection fills them; none for N = 1 or when not asked. */
+static il_status build_coarse(il_linespace *ls, const il_ls_settings *st, il_error *err)
+{
+    ls->coarse_n = st->coarse ? il_ls_coarse_n(ls->n) : 0u;
+    if (ls->coarse_n == 0)
+        return IL_OK;
+    ls->num_coarse = il_ls_num_shafts(ls->coarse_n);
+    ls->coarse_of = malloc(ls->num_shafts * sizeof(uint16_t));
+    ls->coarse = calloc((size_t)ls->num_voxels * ls->num_coarse * 2u + 1u, sizeof(il_ls_coarse));
+    if (!ls->coarse_of || !ls->coarse) {
+        il_ls_free(ls);
+        return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the coarse level");
+    }
+    _Static_assert(15u * (IL_LS_MAX_N / 2u) * (IL_LS_MAX_N / 2u) * (IL_LS_MAX_N / 2u) * (IL_LS_MAX_N / 2u) <=
+                       65536u, "il_linespace.coarse_of: a coarse shaft fits 16 bits");
+    for (uint32_t sh = 0; sh < ls->num_shafts; sh++)
+        ls->coarse_of[sh] = (uint16_t)il_ls_coarse_shaft(ls->n, sh);
+    return IL_OK;
+}
+
 il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threads, il_linespace *ls,
                       il_error *err)
 {
@@ -489,5 +515,5 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
     ls->num_stored = stored;
     ls->num_cand = cands;
     ls->num_overflow = overflow;
-    return IL_OK;
+    return build_coarse(ls, st, err);
 }

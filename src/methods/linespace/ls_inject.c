@@ -142,6 +142,40 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     }
 }
 
+/* A coarse shaft's sums over the stored shafts it holds (docs/linespace.md,
+ * "Coarse level"): radiance = sum(Phi l) / (P sum M), the track-length
+ * estimate over all their lines together. */
+typedef struct coarse_sum {
+    double measure;
+    double phi[2][3];
+    bool filled[2];
+} coarse_sum;
+
+/* Adds one stored shaft of measure `meas`: its two entries' sums
+ * (acc[3 dir + c]) and deposit flags. */
+static void coarse_add(coarse_sum *c, double meas, const double *acc, const uint8_t *filled)
+{
+    c->measure += meas;
+    for (int dir = 0; dir < 2; dir++) {
+        for (int k = 0; k < 3; k++)
+            c->phi[dir][k] += acc[3 * dir + k];
+        c->filled[dir] |= filled[dir] != 0;
+    }
+}
+
+static void coarse_finish(il_linespace *ls, uint32_t voxel, const coarse_sum *cs, uint64_t paths)
+{
+    for (uint32_t c = 0; c < ls->num_coarse; c++) {
+        double scale = cs[c].measure > 0.0 ? 1.0 / ((double)paths * cs[c].measure) : 0.0;
+        for (uint32_t dir = 0; dir < 2; dir++) {
+            il_ls_coarse *e = &ls->coarse[((size_t)voxel * ls->num_coarse + c) * 2u + dir];
+            for (int k = 0; k < 3; k++)
+                e->rgb[k] = (float)(cs[c].phi[dir][k] * scale);
+            e->filled = cs[c].filled[dir];
+        }
+    }
+}
+
 /* Adds the deposits of chunks ch[0..n-1] to the sums, in chunk order and
  * in each chunk's order, so the sums do not depend on the thread count.
  * The threads split the entries, not the deposits: each reads every
@@ -177,7 +211,7 @@ static void merge_round(const chunk *ch, size_t n, uint64_t num_entries, int thr
                 a[0] += d[i].rgb[0];
                 a[1] += d[i].rgb[1];
                 a[2] += d[i].rgb[2];
-                filled[e] = 1;
+                filled[e] += filled[e] < 255u; /* deposits, saturating */
             }
         }
     }
@@ -245,7 +279,21 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
      * reading that ignores how much of the sphere a shaft covers does. */
     double volume = (double)ls->vsize.x * ls->vsize.y * ls->vsize.z;
     double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
+    /* Per coarse shaft of the voxel at hand: its stored shafts' summed
+     * measure, then per direction the sums of Phi l and whether any got a
+     * deposit. */
+    coarse_sum *cs = ls->coarse ? malloc(ls->num_coarse * sizeof(coarse_sum)) : NULL;
+    if (ls->coarse && !cs) {
+        free(acc);
+        free(filled);
+        return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the coarse level");
+    }
+    /* With a coarse level, an entry holding fewer deposits than
+     * st->coarse_below reads as empty, so the coarse one is read instead. */
+    unsigned min_deposits = cs ? st->coarse_below : 1u;
     for (uint32_t v = 0; v < ls->num_voxels; v++) {
+        if (cs)
+            memset(cs, 0, ls->num_coarse * sizeof(coarse_sum));
         for (uint32_t w = 0; w < ls->mask_words; w++) {
             il_ls_word *word = &ls->words[(size_t)v * ls->mask_words + w];
             uint64_t m = word->mask;
@@ -260,14 +308,20 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
                     uint64_t e = 2u * (uint64_t)slot + dir;
                     for (int c = 0; c < 3; c++)
                         r->rgb[dir][c] = (float)(acc[3u * e + c] * scale);
-                    if (filled[e]) {
+                    if (filled[e] >= min_deposits) {
                         r->info |= IL_LS_REC_FILLED(dir);
                         word->filled[dir] |= 1ull << (shaft % 64u);
                     }
                 }
+                if (cs)
+                    coarse_add(&cs[ls->coarse_of[shaft]], meas, acc + 6u * (uint64_t)slot,
+                               filled + 2u * (uint64_t)slot);
             }
         }
+        if (cs)
+            coarse_finish(ls, v, cs, paths);
     }
+    free(cs);
     free(acc);
     free(filled);
     return IL_OK;

@@ -20,21 +20,44 @@ static int64_t find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *dir,
     return il_ls_slot(ls, *voxel, shaft);
 }
 
-il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L)
+/* The coarse entry of (voxel, shaft, dir), or -1 without a coarse level. */
+static inline int64_t coarse_index(const il_linespace *ls, uint32_t voxel, uint32_t shaft, uint32_t dir)
 {
+    if (!ls->coarse)
+        return -1;
+    return (int64_t)(((size_t)voxel * ls->num_coarse + ls->coarse_of[shaft]) * 2u + dir);
+}
+
+il_ls_lookup_status il_ls_lookup_level(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
+                                       bool *coarse)
+{
+    if (coarse)
+        *coarse = false;
     /* Nudged towards where the light comes from, so a point on a voxel's
      * face reads the voxel on its lit side. */
     il_vec3 q = v3_fma(p, w, 1e-4f * v3_max_comp(ls->vsize));
-    uint32_t dir, voxel;
+    uint32_t dir, voxel, shaft;
     float t_in, t_out;
-    int64_t slot = find(ls, q, v3_neg(w), &dir, &t_in, &t_out, &voxel);
-    if (slot < 0)
+    if (!il_ls_find(ls, q, v3_neg(w), &voxel, &shaft, &dir, &t_in, &t_out))
         return IL_LS_EMPTY;
-    const il_ls_rec *r = &ls->recs[slot];
-    if (!(r->info & IL_LS_REC_FILLED(dir)))
+    int64_t slot = il_ls_slot(ls, voxel, shaft);
+    if (slot >= 0 && (ls->recs[slot].info & IL_LS_REC_FILLED(dir))) {
+        const il_ls_rec *r = &ls->recs[slot];
+        *L = v3(r->rgb[dir][0], r->rgb[dir][1], r->rgb[dir][2]);
+        return IL_LS_FOUND;
+    }
+    int64_t c = coarse_index(ls, voxel, shaft, dir);
+    if (c < 0 || !ls->coarse[c].filled)
         return IL_LS_EMPTY;
-    *L = v3(r->rgb[dir][0], r->rgb[dir][1], r->rgb[dir][2]);
+    *L = v3(ls->coarse[c].rgb[0], ls->coarse[c].rgb[1], ls->coarse[c].rgb[2]);
+    if (coarse)
+        *coarse = true;
     return IL_LS_FOUND;
+}
+
+il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L)
+{
+    return il_ls_lookup_level(ls, p, w, L, NULL);
 }
 
 /* Moeller & Trumbore 1997: the ray's distance to the triangle, or -1. */
@@ -180,7 +203,7 @@ void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *p
      * x along w leaves it, t_in behind x. */
     float eps = 1e-4f * v3_max_comp(ls->vsize);
     float t_out;
-    pr->slot = -1;
+    pr->slot = pr->coarse = -1;
     pr->found = il_ls_find(ls, v3_fma(x, w, eps), v3_neg(w), &pr->voxel, &pr->shaft, &pr->dir, &pr->t_in, &t_out);
     if (pr->found)
         __builtin_prefetch(&ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u]);
@@ -190,14 +213,21 @@ void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *
 {
     if (!pr->found)
         return;
-    /* An entry without deposits reads as nothing: its record is not
-     * needed (nor fetched). */
     const il_ls_word *word = &ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u];
     uint64_t bit = 1ull << (pr->shaft % 64u);
-    if (!(word->filled[pr->dir] & bit))
-        return;
-    pr->slot = (int64_t)(word->first_slot + il_ls_popcount(word->mask & (bit - 1u)));
-    (void)occlusion_test; /* the record holds the list's start too */
+    int64_t slot = (word->mask & bit) ? (int64_t)(word->first_slot + il_ls_popcount(word->mask & (bit - 1u))) : -1;
+    if (!(word->filled[pr->dir] & bit)) {
+        /* An empty entry: without a coarse level it reads as nothing (its
+         * record is not needed, nor fetched); with one, the coarse entry
+         * is read instead, and the record only for its candidates. */
+        pr->coarse = coarse_index(ls, pr->voxel, pr->shaft, pr->dir);
+        if (pr->coarse < 0)
+            return;
+        __builtin_prefetch(&ls->coarse[pr->coarse]);
+        if (!occlusion_test || slot < 0)
+            return;
+    }
+    pr->slot = slot;
     __builtin_prefetch(&ls->recs[pr->slot]);
 }
 
@@ -205,15 +235,24 @@ il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *sce
                                      il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
                                      uint32_t self_prim, il_vec3 *L, il_ray *ray)
 {
-    if (pr->slot < 0)
-        return IL_LS_EMPTY;
-    /* The entry first, the occlusion test only for an entry holding light
-     * (an empty entry gives nothing either way). */
-    const il_ls_rec *r = &ls->recs[pr->slot];
-    if (!(r->info & IL_LS_REC_FILLED(pr->dir)))
-        return IL_LS_EMPTY;
+    const il_ls_rec *r = pr->slot >= 0 ? &ls->recs[pr->slot] : NULL;
+    if (pr->coarse >= 0) {
+        /* The coarse entry, and the occlusion test on the shaft's own
+         * candidates (none when it is not stored: nothing in it). */
+        const il_ls_coarse *c = &ls->coarse[pr->coarse];
+        if (!c->filled)
+            return IL_LS_EMPTY;
+        *L = v3(c->rgb[0], c->rgb[1], c->rgb[2]);
+        if (!r)
+            return IL_LS_FOUND;
+    } else {
+        /* The entry first, the occlusion test only for an entry holding
+         * light (an empty entry gives nothing either way). */
+        if (!r || !(r->info & IL_LS_REC_FILLED(pr->dir)))
+            return IL_LS_EMPTY;
+        *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
+    }
     float eps = 1e-4f * v3_max_comp(ls->vsize), tmax = -pr->t_in;
-    *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
     if (occlusion_test && ray && (r->info & IL_LS_REC_OVERFLOW) && tmax > eps) {
         /* shaft_blocks's ray, for the caller to trace. */
         *ray = (il_ray){.org = x, .tmin = eps, .dir = w, .tmax = tmax};

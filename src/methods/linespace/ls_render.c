@@ -38,7 +38,7 @@
 #include "trace/trace.h"
 
 typedef struct ls_counts {
-    uint64_t lookups, hits, empty, occluded;
+    uint64_t lookups, hits, empty, occluded, coarse;
 } ls_counts;
 
 typedef struct ls_method {
@@ -47,7 +47,7 @@ typedef struct ls_method {
     il_ls_settings set;
     float blur_radius;             /* world units */
     bool prefetch;                 /* il_wave_wants_prefetch */
-    _Atomic uint64_t lookups, hits, empty, occluded;
+    _Atomic uint64_t lookups, hits, empty, occluded, coarse;
 } ls_method;
 
 /* How likely a hit on material `mat` reads the Linespace rather than
@@ -121,13 +121,15 @@ static ls_step path_advance(const il_scene *s, ls_path *p, il_vec3 x, il_vec3 ng
     return LS_GO;
 }
 
-/* A pending lookup's answer r (Li when found): the path ends with what it
- * read, or (fallback) traces on as the path tracer would. */
+/* A pending lookup's answer r (Li when found, from the coarse level when
+ * `coarse`): the path ends with what it read, or (fallback) traces on as
+ * the path tracer would. */
 static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_status r, il_vec3 Li,
-                                 ls_counts *cnt)
+                                 bool coarse, ls_counts *cnt)
 {
     if (r == IL_LS_FOUND) {
         cnt->hits++;
+        cnt->coarse += coarse;
         p->read = true;
         p->read_L = v3_mul(p->next, Li);
         return LS_STOP;
@@ -222,12 +224,13 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             il_vec2 d = il_sample_concentric_disk(il_sampler_2d(smp));
             il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
             il_vec3 Li = v3s(0.0f);
-            il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li);
+            bool coarse;
+            il_ls_lookup_status r = il_ls_lookup_level(m->ls, q, bs.wi, &Li, &coarse);
             /* The occlusion test only where there is light to block. */
             if (r == IL_LS_FOUND && m->set.occlusion_test &&
                 il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
                 r = IL_LS_OCCLUDED;
-            return path_after_lookup(m, p, r, Li, cnt);
+            return path_after_lookup(m, p, r, Li, coarse, cnt);
         }
         p->beta = next;
         p->specular = false;
@@ -380,7 +383,8 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         }
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
-            if (path_after_lookup(m, &w->path[j], w->status[k], w->Li[k], cnt) == LS_GO)
+            if (path_after_lookup(m, &w->path[j], w->status[k], w->Li[k], w->probe[k].coarse >= 0, cnt) ==
+                LS_GO)
                 w->active[still++] = j;
         }
         if (num_shadow > 0) {
@@ -417,6 +421,7 @@ static void ls_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera
     atomic_fetch_add(&m->hits, cnt.hits);
     atomic_fetch_add(&m->empty, cnt.empty);
     atomic_fetch_add(&m->occluded, cnt.occluded);
+    atomic_fetch_add(&m->coarse, cnt.coarse);
 }
 
 il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
@@ -475,6 +480,7 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     st->lookup_hits = atomic_load(&m->hits);
     st->lookup_empty = atomic_load(&m->empty);
     st->lookup_occluded = atomic_load(&m->occluded);
+    st->lookup_coarse = atomic_load(&m->coarse);
     il_ls_free(&ls);
     if (s != IL_OK)
         return s;

@@ -29,6 +29,9 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
         return il_fail(err, IL_ERR_INVALID,
                        "linespace: blur %g is out of range (0 to 4 of the voxel's smallest side)",
                        (double)d->blur);
+    if (d->coarse_below > 255u)
+        return il_fail(err, IL_ERR_INVALID, "linespace: coarse-below %u is out of range (1 to 255)",
+                       d->coarse_below);
     if (!(d->glossy_n1 >= 0.0f && d->glossy_n1 <= 1e6f) || !(d->glossy_n2 >= 0.0f && d->glossy_n2 <= 1e6f))
         return il_fail(err, IL_ERR_INVALID, "linespace: glossy thresholds must be in 0 to 10^6");
     out->grid = d->grid ? d->grid : 8u;
@@ -43,6 +46,8 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
     out->occlusion_test = !d->no_occlusion_test;
     out->fallback = !d->no_fallback;
     out->solid_angle = !d->no_solid_angle;
+    out->coarse = d->coarse;
+    out->coarse_below = d->coarse_below ? d->coarse_below : 32u;
     out->n1 = d->glossy_n1 > 0.0f ? d->glossy_n1 : 10.0f;
     out->n2 = d->glossy_n2 > 0.0f ? d->glossy_n2 : 100.0f;
     if (out->n2 < out->n1)

@@ -50,6 +50,23 @@ void il_ls_shaft_patches(uint32_t n, uint32_t shaft, uint32_t *fa, uint32_t *pa,
     *pb = rest % n2;
 }
 
+uint32_t il_ls_coarse_n(uint32_t n)
+{
+    for (uint32_t f = 2; f <= n; f++)
+        if (n % f == 0)
+            return n / f;
+    return 0;
+}
+
+uint32_t il_ls_coarse_shaft(uint32_t n, uint32_t shaft)
+{
+    uint32_t nc = il_ls_coarse_n(n), k = n / nc, fa, pa, fb, pb, dir;
+    il_ls_shaft_patches(n, shaft, &fa, &pa, &fb, &pb);
+    /* Patch (i, j) of N lies in patch (i / k, j / k) of N_c = N / k. */
+    uint32_t ca = (pa / n / k) * nc + (pa % n) / k, cb = (pb / n / k) * nc + (pb % n) / k;
+    return il_ls_shaft_index(nc, fa, ca, fb, cb, &dir); /* fa < fb: dir 0, as the shaft's own */
+}
+
 /* The second and third axes of a face on axis a (the two spanning it, in
  * increasing order), by table rather than by branches. */
 static const uint8_t face_u[3] = {1, 0, 0}, face_v[3] = {2, 2, 1};
