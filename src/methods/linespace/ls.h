@@ -114,7 +114,8 @@ typedef struct il_ls_rec {
 #define IL_LS_REC_LEN_SHIFT 20u                  /* bits 20-24: the list's length, 1 to 16 */
 #define IL_LS_REC_LEN_MASK 31u
 #define IL_LS_REC_OVERFLOW (1u << 25)            /* no list: the occlusion test traces */
-#define IL_LS_REC_FILLED(dir) (1u << (26u + (dir))) /* direction dir holds deposits */
+#define IL_LS_REC_FILLED(dir) (1u << (26u + (dir))) /* direction dir holds deposits (with a
+                                                       coarse level: coarse_below or more) */
 /* Every voxel's rest of the lists fits the 20 bits of the start. */
 _Static_assert(15ull * IL_LS_MAX_N * IL_LS_MAX_N * IL_LS_MAX_N * IL_LS_MAX_N * (IL_LS_MAX_CAND - IL_LS_INLINE) <=
                    (1ull << IL_LS_REC_START_BITS),
@@ -126,8 +127,8 @@ _Static_assert(sizeof(il_ls_rec) == 32u, "il_ls_rec: two per cache line");
 /* 64 shafts of one Linespace: a bit per shaft stored, and the slot of the
  * first of them (the slot of a stored shaft is first_slot + the stored
  * shafts below it in the word), and per direction a bit per shaft whose
- * entry holds deposits (set by the injection), so that a lookup of an
- * empty entry ends here without reading its record.  32 bytes: two per
+ * entry holds deposits (set by the injection, as IL_LS_REC_FILLED), so that
+ * a lookup of an empty entry ends here without reading its record.  32 bytes: two per
  * cache line. */
 typedef struct il_ls_word {
     uint64_t mask;
@@ -270,7 +271,8 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *s, uint64_t 
 
 typedef enum il_ls_lookup_status {
     IL_LS_FOUND = 0,
-    IL_LS_EMPTY,            /* outside the grid, no Linespace, shaft not stored or no deposit */
+    IL_LS_EMPTY,            /* outside the grid, no Linespace, shaft not stored or no deposit
+                               (with a coarse level: too few, and none in the coarse entry) */
     IL_LS_OCCLUDED,         /* the in-shaft occlusion test found geometry first */
     IL_LS_TRACE             /* il_ls_read_probe: found, unless the occlusion ray it
                                left to the caller hits something (then occluded) */
