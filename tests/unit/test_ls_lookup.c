@@ -11,9 +11,17 @@
  *   from its 32-byte record (the first candidates inline, the rest in the
  *   voxel's array), agrees with a brute-force test of the ray against every
  *   triangle of the scene up to the voxel's face, on the Cornell box at
- *   two grids and N (short and long lists). */
+ *   two grids and N (short and long lists);
+ * - the coarse level after an injection (Cornell box, grid 8, N 4 and 3):
+ *   each coarse entry is the measure-weighted mean of its stored shafts'
+ *   entries (which hold sum / (P M) whether or not they count as filled),
+ *   filled when one of them got a deposit; and the wave's three-step
+ *   lookup (probe, slot, read) gives what il_ls_lookup_level and
+ *   il_ls_occluded give, bit for bit, coarse or fine, for random points on
+ *   the scene's triangles with the fine threshold at 1 and at 32. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "core/rng.h"
@@ -251,6 +259,99 @@ static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg
     il_ls_free(&ls);
 }
 
+/* A random point on a random triangle of the scene, and which triangle. */
+static il_vec3 random_surface_point(const il_scene *s, il_pcg32 *r, uint32_t *mesh, uint32_t *prim)
+{
+    *mesh = il_pcg32_next(r) % s->num_meshes;
+    *prim = il_pcg32_next(r) % s->meshes[*mesh].num_triangles;
+    const il_tri_geom *g = &s->meshes[*mesh].geom[*prim];
+    float a = rnd(r), b = rnd(r);
+    if (a + b > 1.0f) {
+        a = 1.0f - a;
+        b = 1.0f - b;
+    }
+    return v3_fma(v3_fma(g->p0, v3_sub(g->p1, g->p0), a), v3_sub(g->p2, g->p0), b);
+}
+
+static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32 *r)
+{
+    il_ls_settings set = {.grid = 8, .n = n, .inject_rays = 100000, .inject_depth = 3, .coarse = true,
+                          .coarse_below = below, .solid_angle = true};
+    il_linespace ls;
+    il_ls_inject_result ir;
+    if (il_ls_build(s, &set, 2, &ls, &g_err) != IL_OK || il_ls_inject(s, &set, 7, 2, &ls, &ir, &g_err) != IL_OK) {
+        CHECK(false);
+        return;
+    }
+    CHECK(ls.coarse && ls.coarse_n == il_ls_coarse_n(n));
+    /* The coarse entries from the fine ones. */
+    double *sum = calloc((size_t)ls.num_coarse * 7u, sizeof(double));
+    uint32_t bad_value = 0, bad_filled = 0, filled = 0;
+    for (uint32_t v = 0; sum && v < ls.num_voxels; v++) {
+        memset(sum, 0, (size_t)ls.num_coarse * 7u * sizeof(double));
+        for (uint32_t sh = 0; sh < ls.num_shafts; sh++) {
+            int64_t slot = il_ls_slot(&ls, v, sh);
+            if (slot < 0)
+                continue;
+            double *c = sum + 7u * ls.coarse_of[sh], m = ls.measure[sh];
+            const il_ls_rec *rec = &ls.recs[slot];
+            c[0] += m;
+            for (int dir = 0; dir < 2; dir++)
+                for (int k = 0; k < 3; k++)
+                    c[1 + 3 * dir + k] += m * rec->rgb[dir][k];
+        }
+        for (uint32_t c = 0; c < ls.num_coarse; c++)
+            for (uint32_t dir = 0; dir < 2; dir++) {
+                const il_ls_coarse *e = &ls.coarse[((size_t)v * ls.num_coarse + c) * 2u + dir];
+                filled += e->filled != 0;
+                bad_filled += (e->filled != 0) != (sum[7u * c + 1 + 3 * dir] + sum[7u * c + 2 + 3 * dir] +
+                                                       sum[7u * c + 3 + 3 * dir] > 0.0);
+                for (int k = 0; k < 3; k++) {
+                    double want = sum[7u * c] > 0.0 ? sum[7u * c + 1 + 3 * dir + k] / sum[7u * c] : 0.0;
+                    bad_value += fabs((double)e->rgb[k] - want) > 1e-5 * fabs(want) + 1e-30;
+                }
+            }
+    }
+    free(sum);
+    /* The wave's lookup against the plain one. */
+    uint32_t looked = 0, found = 0, from_coarse = 0, occluded = 0, differ = 0;
+    for (uint32_t i = 0; i < 40000; i++) {
+        uint32_t m, t;
+        il_vec3 x = random_surface_point(s, r, &m, &t);
+        il_vec3 w = il_sample_uniform_sphere(v2(rnd(r), rnd(r)));
+        for (int occ = 0; occ < 2; occ++) {
+            il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
+            bool coarse = false;
+            il_ls_lookup_status want = il_ls_lookup_level(&ls, x, w, &L1, &coarse);
+            if (occ && want == IL_LS_FOUND && il_ls_occluded(&ls, s, x, w, m, t))
+                want = IL_LS_OCCLUDED;
+            il_ls_probe pr;
+            il_ls_probe_at(&ls, x, w, &pr);
+            il_ls_probe_slot(&ls, occ, &pr);
+            il_ls_lookup_status got = il_ls_read_probe(&ls, s, &pr, x, w, occ, m, t, &L2, NULL);
+            bool same = got == want && (want == IL_LS_EMPTY || (L1.x == L2.x && L1.y == L2.y && L1.z == L2.z)) &&
+                        (want == IL_LS_EMPTY || coarse == (pr.coarse >= 0));
+            differ += !same;
+            looked++;
+            found += want == IL_LS_FOUND;
+            from_coarse += want == IL_LS_FOUND && coarse;
+            occluded += want == IL_LS_OCCLUDED;
+        }
+    }
+    printf("coarse level, N %u -> %u, fine below %u deposits: %u of %u coarse entries filled, %u values and "
+           "%u flags differ from the fine entries'; %u lookups, %u found (%u coarse), %u occluded, %u "
+           "differ between the wave's and the plain lookup\n",
+           n, ls.coarse_n, below, filled, ls.num_voxels * ls.num_coarse * 2u, bad_value, bad_filled, looked,
+           found, from_coarse, occluded, differ);
+    CHECK(filled > 0);
+    CHECK(bad_value == 0 && bad_filled == 0);
+    CHECK(from_coarse > 0 && occluded > 0);
+    if (below == 1) /* 10^5 paths leave few entries with 32 deposits */
+        CHECK(found > from_coarse);
+    CHECK(differ == 0);
+    il_ls_free(&ls);
+}
+
 int main(void)
 {
     il_scene *s = load_committed("cornell");
@@ -259,6 +360,9 @@ int main(void)
     il_pcg32 r = il_pcg32_seed(17, 3);
     check_occlusion(s, 8, 4, &r);
     check_occlusion(s, 3, 2, &r);
+    check_coarse(s, 4, 1, &r);
+    check_coarse(s, 4, 32, &r);
+    check_coarse(s, 3, 32, &r);
     il_scene_release(s);
     return check_report();
 }
