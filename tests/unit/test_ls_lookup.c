@@ -13,9 +13,10 @@
  *   triangle of the scene up to the voxel's face, on the Cornell box at
  *   two grids and N (short and long lists);
  * - the coarse level after an injection (Cornell box, grid 8, N 4 and 3):
- *   each coarse entry is the measure-weighted mean of its stored shafts'
- *   entries (which hold sum / (P M) whether or not they count as filled),
- *   filled when one of them got a deposit; and the wave's three-step
+ *   each coarse entry is the measure-weighted mean of the entries of its
+ *   stored shafts that light crossed either way (an entry holds sum / (P M)
+ *   whether or not it counts as filled; zero when nothing crossed), filled
+ *   when one of them got a deposit; and the wave's three-step
  *   lookup (probe, slot, read) gives what il_ls_lookup_level and
  *   il_ls_occluded give, bit for bit, coarse or fine, for random points on
  *   the scene's triangles with the fine threshold at 1 and at 32. */
@@ -295,7 +296,10 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
                 continue;
             double *c = sum + 7u * ls.coarse_of[sh], m = ls.measure[sh];
             const il_ls_rec *rec = &ls.recs[slot];
-            c[0] += m;
+            bool lit = false;
+            for (int dir = 0; dir < 2; dir++)
+                lit |= rec->rgb[dir][0] + rec->rgb[dir][1] + rec->rgb[dir][2] > 0.0f;
+            c[0] += lit ? m : 0.0;
             for (int dir = 0; dir < 2; dir++)
                 for (int k = 0; k < 3; k++)
                     c[1 + 3 * dir + k] += m * rec->rgb[dir][k];

@@ -161,9 +161,10 @@ typedef struct il_ls_tri {
  * with N_c = N / (N's smallest prime factor) patches per face side, so each
  * patch lies inside one coarse patch and each shaft inside one coarse shaft
  * (the same pair of faces).  A coarse entry holds the radiance of all the
- * light the injection left in its stored shafts, over their summed
- * measure: the mean over more lines, read where a shaft's own entry got no
- * deposit, so that fewer lookups fall back to tracing. */
+ * light the injection left in its stored shafts, over the summed measure
+ * of those that light crossed either way: the mean over more lines, read
+ * where a shaft's own entry got too few deposits, so that fewer lookups
+ * fall back to tracing. */
 typedef struct il_ls_coarse {
     float rgb[3];
     uint32_t filled;               /* 1 when some deposit reached it */

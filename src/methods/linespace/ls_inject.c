@@ -144,7 +144,9 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
 
 /* A coarse shaft's sums over the stored shafts it holds (docs/linespace.md,
  * "Coarse level"): radiance = sum(Phi l) / (P sum M), the track-length
- * estimate over all their lines together. */
+ * estimate over all their lines together, where the sum of M leaves out
+ * the shafts that no light crossed either way: those lie (mostly) inside a
+ * solid, where no light runs, and would dilute the rest. */
 typedef struct coarse_sum {
     double measure;
     double phi[2][3];
@@ -152,10 +154,11 @@ typedef struct coarse_sum {
 } coarse_sum;
 
 /* Adds one stored shaft of measure `meas`: its two entries' sums
- * (acc[3 dir + c]) and deposit flags. */
+ * (acc[3 dir + c]) and deposit counts. */
 static void coarse_add(coarse_sum *c, double meas, const double *acc, const uint8_t *filled)
 {
-    c->measure += meas;
+    if (filled[0] || filled[1])
+        c->measure += meas;
     for (int dir = 0; dir < 2; dir++) {
         for (int k = 0; k < 3; k++)
             c->phi[dir][k] += acc[3 * dir + k];
@@ -279,7 +282,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
      * reading that ignores how much of the sphere a shaft covers does. */
     double volume = (double)ls->vsize.x * ls->vsize.y * ls->vsize.z;
     double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
-    /* Per coarse shaft of the voxel at hand: its stored shafts' summed
+    /* Per coarse shaft of the voxel at hand: its lit stored shafts' summed
      * measure, then per direction the sums of Phi l and whether any got a
      * deposit. */
     coarse_sum *cs = ls->coarse ? malloc(ls->num_coarse * sizeof(coarse_sum)) : NULL;
