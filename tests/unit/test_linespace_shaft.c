@@ -13,7 +13,7 @@
  *   coarse shaft joins the same two faces through the coarse patches that
  *   hold its own (corners inside them), every coarse shaft holds
  *   (N / N_c)^4 shafts, and its measure, integrated at N_c, is the sum of
- *   theirs integrated at N (on the same midpoints, 48 per face side, so
+ *   theirs integrated at N (on the same midpoints, 24 per face side, so
  *   equal but for rounding: a shaft counted in the wrong coarse one
  *   shows). */
 #include <stdlib.h>
@@ -164,8 +164,8 @@ int main(void)
         uint32_t k = n / nc, *children = calloc(ncs, sizeof(uint32_t)), bad = 0;
         float *m = malloc(ns * sizeof(float)), *mc = malloc(ncs * sizeof(float));
         double *sum = calloc(ncs, sizeof(double));
-        il_ls_shaft_measures(size, n, 48u / n, m);
-        il_ls_shaft_measures(size, nc, 48u / nc, mc);
+        il_ls_shaft_measures(size, n, 24u / n, m);
+        il_ls_shaft_measures(size, nc, 24u / nc, mc);
         for (uint32_t sh = 0; sh < ns; sh++) {
             uint32_t c = il_ls_coarse_shaft(n, sh);
             if (c >= ncs) {
