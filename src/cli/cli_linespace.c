@@ -28,8 +28,8 @@ const char cli_linespace_help[] =
     "  --coarse on|off        an entry with too few deposits reads a coarser level\n"
     "                         (N / its smallest prime factor) before falling back\n"
     "                         (default off)\n"
-    "  --coarse-below K       too few: below K deposits, 1 to 255 (default 32;\n"
-    "                         1: only empty entries)\n"
+    "  --coarse-below K       with --coarse on, too few is below K deposits, 1 to\n"
+    "                         255 (default 32; 1: only empty entries)\n"
     "  --glossy-n1 E          Phong exponents below E read the Linespace (default 10)\n"
     "  --glossy-n2 E          Phong exponents above E trace on, blend between\n"
     "                         (default 100); both 0.001 to 10^6\n";
