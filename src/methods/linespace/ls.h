@@ -171,7 +171,8 @@ typedef struct il_ls_coarse {
 } il_ls_coarse;
 /* N_c for N patches per side; 0 for N = 1 (no coarser level). */
 uint32_t il_ls_coarse_n(uint32_t n);
-/* The coarse shaft (at N_c = il_ls_coarse_n(n)) holding shaft `shaft` of N. */
+/* The coarse shaft (at N_c = il_ls_coarse_n(n)) holding shaft `shaft` of
+ * N (N > 1). */
 uint32_t il_ls_coarse_shaft(uint32_t n, uint32_t shaft);
 
 typedef struct il_linespace {
