@@ -134,13 +134,15 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
 void cli_linespace_summary(const il_linespace_stats *s)
 {
     double hit = s->lookups ? 100.0 * (double)s->lookup_hits / (double)s->lookups : 0.0;
-    double coarse = s->lookups ? 100.0 * (double)s->lookup_coarse / (double)s->lookups : 0.0;
+    char coarse[64] = "";
+    if (s->lookup_coarse > 0)
+        snprintf(coarse, sizeof coarse, ", %.1f%% of them from the coarse level",
+                 100.0 * (double)s->lookup_coarse / (double)s->lookup_hits);
     fprintf(stderr,
             "illum: linespace: grid %ux%ux%u, N %u, %llu voxels, %llu shafts, %.1f MB; %llu paths "
-            "injected; %.1f%% of lookups found light, %.1f%% of them from the coarse level "
-            "(build %.2f s, inject %.2f s, sample %.2f s)\n",
+            "injected; %.1f%% of lookups found light%s (build %.2f s, inject %.2f s, sample %.2f s)\n",
             s->grid[0], s->grid[1], s->grid[2], s->n, (unsigned long long)s->voxels,
             (unsigned long long)s->shafts, (double)s->memory_bytes / (1024.0 * 1024.0),
-            (unsigned long long)s->inject_rays, hit, hit > 0.0 ? 100.0 * coarse / hit : 0.0,
-            s->seconds_build, s->seconds_inject, s->seconds_sample);
+            (unsigned long long)s->inject_rays, hit, coarse, s->seconds_build, s->seconds_inject,
+            s->seconds_sample);
 }
