@@ -34,8 +34,8 @@ typedef struct il_ls_settings {
     uint32_t inject_depth;  /* bounces of a light path (segments after the first hit) */
     float blur;             /* fraction of the smallest voxel side */
     bool occlusion_test, fallback, solid_angle;
-    bool coarse;            /* read the coarse level where an entry is empty */
-    uint32_t coarse_below;  /* entries with fewer deposits count as empty then */
+    bool coarse;            /* build a coarse level, read where an entry has */
+    uint32_t coarse_below;  /* fewer deposits than this (they count as empty) */
     float n1, n2;           /* glossy thresholds on the Phong exponent */
     uint32_t max_depth;     /* of the camera paths */
 } il_ls_settings;
@@ -128,8 +128,8 @@ _Static_assert(sizeof(il_ls_rec) == 32u, "il_ls_rec: two per cache line");
  * first of them (the slot of a stored shaft is first_slot + the stored
  * shafts below it in the word), and per direction a bit per shaft whose
  * entry holds deposits (set by the injection, as IL_LS_REC_FILLED), so that
- * a lookup of an empty entry ends here without reading its record.  32 bytes: two per
- * cache line. */
+ * a lookup of an empty entry ends here without reading its record.  32
+ * bytes: two per cache line. */
 typedef struct il_ls_word {
     uint64_t mask;
     uint64_t first_slot;
