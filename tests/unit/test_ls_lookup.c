@@ -17,7 +17,7 @@
  *   stored shafts that light crossed either way (an entry holds sum / (P M)
  *   whether or not it counts as filled; zero when nothing crossed), filled
  *   when one of them got a deposit; and the wave's three-step
- *   lookup (probe, slot, read) gives what il_ls_lookup_level and
+ *   lookup (probe, slot, read) gives what il_ls_lookup and
  *   il_ls_occluded give, bit for bit, coarse or fine, for random points on
  *   the scene's triangles with the fine threshold at 1 and at 32. */
 #include <math.h>
@@ -306,7 +306,7 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
         }
         for (uint32_t c = 0; c < ls.num_coarse; c++)
             for (uint32_t dir = 0; dir < 2; dir++) {
-                const il_ls_coarse *e = &ls.coarse[((size_t)v * ls.num_coarse + c) * 2u + dir];
+                const il_ls_coarse *e = il_ls_coarse_entry(&ls, v, c, dir);
                 filled += e->filled != 0;
                 bad_filled += (e->filled != 0) != (sum[7u * c + 1 + 3 * dir] + sum[7u * c + 2 + 3 * dir] +
                                                        sum[7u * c + 3 + 3 * dir] > 0.0);
@@ -326,7 +326,7 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
         for (int occ = 0; occ < 2; occ++) {
             il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
             bool coarse = false;
-            il_ls_lookup_status want = il_ls_lookup_level(&ls, x, w, &L1, &coarse);
+            il_ls_lookup_status want = il_ls_lookup(&ls, x, w, &L1, &coarse);
             if (occ && want == IL_LS_FOUND && il_ls_occluded(&ls, s, x, w, m, t))
                 want = IL_LS_OCCLUDED;
             il_ls_probe pr;
@@ -334,7 +334,7 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
             il_ls_probe_slot(&ls, occ, &pr);
             il_ls_lookup_status got = il_ls_read_probe(&ls, s, &pr, x, w, occ, m, t, &L2, NULL);
             bool same = got == want && (want == IL_LS_EMPTY || (L1.x == L2.x && L1.y == L2.y && L1.z == L2.z)) &&
-                        (want == IL_LS_EMPTY || coarse == (pr.coarse >= 0));
+                        (want == IL_LS_EMPTY || coarse == (pr.coarse != NULL));
             differ += !same;
             looked++;
             found += want == IL_LS_FOUND;

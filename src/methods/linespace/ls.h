@@ -207,6 +207,13 @@ typedef struct il_linespace {
     uint64_t num_stored, num_cand, num_overflow;
 } il_linespace;
 
+/* The coarse entry of coarse shaft c, direction dir, of Linespace `voxel`. */
+static inline il_ls_coarse *il_ls_coarse_entry(const il_linespace *ls, uint32_t voxel, uint32_t c,
+                                               uint32_t dir)
+{
+    return &ls->coarse[((size_t)voxel * ls->num_coarse + c) * 2u + dir];
+}
+
 /* Builds the grid over the scene's bounds, bins the triangles into the
  * voxels and, in every non-empty voxel, keeps the shafts whose convex hull
  * the voxel's triangles may touch with their candidate lists. */
@@ -282,12 +289,10 @@ typedef enum il_ls_lookup_status {
 
 /* The radiance arriving at p from direction w (unit, pointing away from p)
  * as the Linespace holds it: the shaft and direction of the line through p
- * along -w in p's voxel. */
-il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L);
-/* The same, and *coarse (when not NULL) says whether an empty entry was
- * answered by the coarse level. */
-il_ls_lookup_status il_ls_lookup_level(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
-                                       bool *coarse);
+ * along -w in p's voxel, or its coarse entry when that one has too few
+ * deposits (*coarse, when not NULL, says which was read). */
+il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
+                                 bool *coarse);
 
 /* The in-shaft occlusion test: whether a triangle of the shaft's candidate
  * list (or, for an overflowing shaft, anything in the scene) lies on the
@@ -314,7 +319,7 @@ typedef struct il_ls_probe {
     uint32_t voxel, shaft, dir;
     int64_t slot;                /* -1: no record to read (none stored, or its
                                     entry empty and no coarse entry to read) */
-    int64_t coarse;              /* the coarse entry read instead of an empty one, or -1 */
+    const il_ls_coarse *coarse;  /* the coarse entry read instead of an empty one, or NULL */
     float t_in;
 } il_ls_probe;
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr);

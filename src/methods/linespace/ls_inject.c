@@ -171,7 +171,7 @@ static void coarse_finish(il_linespace *ls, uint32_t voxel, const coarse_sum *cs
     for (uint32_t c = 0; c < ls->num_coarse; c++) {
         double scale = cs[c].measure > 0.0 ? 1.0 / ((double)paths * cs[c].measure) : 0.0;
         for (uint32_t dir = 0; dir < 2; dir++) {
-            il_ls_coarse *e = &ls->coarse[((size_t)voxel * ls->num_coarse + c) * 2u + dir];
+            il_ls_coarse *e = il_ls_coarse_entry(ls, voxel, c, dir);
             for (int k = 0; k < 3; k++)
                 e->rgb[k] = (float)(cs[c].phi[dir][k] * scale);
             e->filled = cs[c].filled[dir];

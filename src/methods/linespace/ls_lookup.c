@@ -20,16 +20,15 @@ static int64_t find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *dir,
     return il_ls_slot(ls, *voxel, shaft);
 }
 
-/* The coarse entry of (voxel, shaft, dir), or -1 without a coarse level. */
-static inline int64_t coarse_index(const il_linespace *ls, uint32_t voxel, uint32_t shaft, uint32_t dir)
+/* The coarse entry of (voxel, shaft, dir), or NULL without a coarse level. */
+static inline const il_ls_coarse *coarse_of(const il_linespace *ls, uint32_t voxel, uint32_t shaft,
+                                            uint32_t dir)
 {
-    if (!ls->coarse)
-        return -1;
-    return (int64_t)(((size_t)voxel * ls->num_coarse + ls->coarse_of[shaft]) * 2u + dir);
+    return ls->coarse ? il_ls_coarse_entry(ls, voxel, ls->coarse_of[shaft], dir) : NULL;
 }
 
-il_ls_lookup_status il_ls_lookup_level(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
-                                       bool *coarse)
+il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L,
+                                 bool *coarse)
 {
     if (coarse)
         *coarse = false;
@@ -46,18 +45,13 @@ il_ls_lookup_status il_ls_lookup_level(const il_linespace *ls, il_vec3 p, il_vec
         *L = v3(r->rgb[dir][0], r->rgb[dir][1], r->rgb[dir][2]);
         return IL_LS_FOUND;
     }
-    int64_t c = coarse_index(ls, voxel, shaft, dir);
-    if (c < 0 || !ls->coarse[c].filled)
+    const il_ls_coarse *c = coarse_of(ls, voxel, shaft, dir);
+    if (!c || !c->filled)
         return IL_LS_EMPTY;
-    *L = v3(ls->coarse[c].rgb[0], ls->coarse[c].rgb[1], ls->coarse[c].rgb[2]);
+    *L = v3(c->rgb[0], c->rgb[1], c->rgb[2]);
     if (coarse)
         *coarse = true;
     return IL_LS_FOUND;
-}
-
-il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, il_vec3 *L)
-{
-    return il_ls_lookup_level(ls, p, w, L, NULL);
 }
 
 /* Moeller & Trumbore 1997: the ray's distance to the triangle, or -1. */
@@ -203,7 +197,8 @@ void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *p
      * x along w leaves it, t_in behind x. */
     float eps = 1e-4f * v3_max_comp(ls->vsize);
     float t_out;
-    pr->slot = pr->coarse = -1;
+    pr->slot = -1;
+    pr->coarse = NULL;
     pr->found = il_ls_find(ls, v3_fma(x, w, eps), v3_neg(w), &pr->voxel, &pr->shaft, &pr->dir, &pr->t_in, &t_out);
     if (pr->found)
         __builtin_prefetch(&ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u]);
@@ -220,10 +215,10 @@ void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *
         /* An empty entry: without a coarse level it reads as nothing (its
          * record is not needed, nor fetched); with one, the coarse entry
          * is read instead, and the record only for its candidates. */
-        pr->coarse = coarse_index(ls, pr->voxel, pr->shaft, pr->dir);
-        if (pr->coarse < 0)
+        pr->coarse = coarse_of(ls, pr->voxel, pr->shaft, pr->dir);
+        if (!pr->coarse)
             return;
-        __builtin_prefetch(&ls->coarse[pr->coarse]);
+        __builtin_prefetch(pr->coarse);
         if (!occlusion_test || slot < 0)
             return;
     }
@@ -236,10 +231,10 @@ il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *sce
                                      uint32_t self_prim, il_vec3 *L, il_ray *ray)
 {
     const il_ls_rec *r = pr->slot >= 0 ? &ls->recs[pr->slot] : NULL;
-    if (pr->coarse >= 0) {
+    if (pr->coarse) {
         /* The coarse entry, and the occlusion test on the shaft's own
          * candidates (none when it is not stored: nothing in it). */
-        const il_ls_coarse *c = &ls->coarse[pr->coarse];
+        const il_ls_coarse *c = pr->coarse;
         if (!c->filled)
             return IL_LS_EMPTY;
         *L = v3(c->rgb[0], c->rgb[1], c->rgb[2]);

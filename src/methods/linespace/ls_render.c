@@ -225,7 +225,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             il_vec3 q = v3_fma(v3_fma(surf->p, f.s, m->blur_radius * d.x), f.t, m->blur_radius * d.y);
             il_vec3 Li = v3s(0.0f);
             bool coarse;
-            il_ls_lookup_status r = il_ls_lookup_level(m->ls, q, bs.wi, &Li, &coarse);
+            il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li, &coarse);
             /* The occlusion test only where there is light to block. */
             if (r == IL_LS_FOUND && m->set.occlusion_test &&
                 il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
@@ -383,7 +383,7 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         }
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
-            if (path_after_lookup(m, &w->path[j], w->status[k], w->Li[k], w->probe[k].coarse >= 0, cnt) ==
+            if (path_after_lookup(m, &w->path[j], w->status[k], w->Li[k], w->probe[k].coarse != NULL, cnt) ==
                 LS_GO)
                 w->active[still++] = j;
         }
