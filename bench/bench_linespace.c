@@ -5,7 +5,7 @@
  *   bench_linespace SCENE [--variant diffuse|glossy|mirror|glass]
  *                   [--inject-rays N] [--grid N] [--linespace-n N] [--blur R]
  *                   [--fallback on|off] [--occlusion-test on|off] [--coarse on|off]
- *                   [--coarse-below K]
+ *                   [--coarse-below K] [--trace-first-bounce on|off]
  *                   [--max-depth D] [--ref-spp N] [--time S] [--spp N]
  *                   [--threads T] [--width W] [--height H]
  *
@@ -57,6 +57,8 @@ static bool ls_option(const char *a, const char *v, void *user)
         o->ld.coarse = !strcmp(v, "on");
     else if (!strcmp(a, "--coarse-below"))
         o->ld.coarse_below = (uint32_t)atoi(v);
+    else if (!strcmp(a, "--trace-first-bounce"))
+        o->ld.trace_first_bounce = !strcmp(v, "on");
     else if (!strcmp(a, "--max-depth"))
         o->max_depth = (uint32_t)atoi(v);
     else if (!strcmp(a, "--time"))

@@ -615,6 +615,9 @@ typedef struct il_linespace_desc {
                                   to tracing (off by default: docs/linespace.md) */
     uint32_t coarse_below;     /* too few: below this many, 1 to 255 (1: only empty
                                   entries); 0 means 32 */
+    bool trace_first_bounce;   /* trace one bounce from the first diffuse or glossy
+                                  hit and read the Linespace at the next one (off by
+                                  default: slower samples, less bias; docs/linespace.md) */
     float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
     float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
 } il_linespace_desc;

@@ -160,7 +160,7 @@ typedef struct cli_linespace_options {
 extern const char cli_linespace_help[];
 /* As cli_radiosity_option, for --grid, --linespace-n, --inject-rays,
  * --inject-depth, --blur, --occlusion-test, --fallback, --solid-angle,
- * --coarse, --coarse-below, --glossy-n1 and --glossy-n2. */
+ * --coarse, --coarse-below, --trace-first-bounce, --glossy-n1 and --glossy-n2. */
 bool cli_linespace_option(int argc, char **argv, int *i, cli_linespace_options *o, int *rc);
 /* Adds the "linespace" object of --stats (every il_linespace_stats field). */
 void cli_linespace_stats_json(struct cJSON *parent, const il_linespace_stats *stats);

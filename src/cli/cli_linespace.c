@@ -30,13 +30,18 @@ const char cli_linespace_help[] =
     "                         (default off)\n"
     "  --coarse-below K       with --coarse on, too few is below K deposits, 1 to\n"
     "                         255 (default 32; 1: only empty entries)\n"
+    "  --trace-first-bounce on|off\n"
+    "                         trace on from the first diffuse or glossy hit and\n"
+    "                         read the Linespace at the next one: a final gather\n"
+    "                         (default off)\n"
     "  --glossy-n1 E          Phong exponents below E read the Linespace (default 10)\n"
     "  --glossy-n2 E          Phong exponents above E trace on, blend between\n"
     "                         (default 100); both 0.001 to 10^6\n";
 
 static const char *const names[] = {"--grid", "--linespace-n", "--inject-rays", "--inject-depth",
                                     "--blur", "--occlusion-test", "--fallback", "--solid-angle",
-                                    "--coarse", "--coarse-below", "--glossy-n1", "--glossy-n2"};
+                                    "--coarse", "--coarse-below", "--trace-first-bounce",
+                                    "--glossy-n1", "--glossy-n2"};
 #define COUNT(a) (sizeof a / sizeof a[0])
 
 /* An on/off option stored as its "no_" flag. */
@@ -76,6 +81,8 @@ static bool parse_value(const char *name, const char *v, il_linespace_desc *d)
         return cli_parse_on_off(name, v, &d->coarse);
     if (!strcmp(name, "--coarse-below"))
         return cli_parse_u32(name, v, 1, 255, &d->coarse_below);
+    if (!strcmp(name, "--trace-first-bounce"))
+        return cli_parse_on_off(name, v, &d->trace_first_bounce);
     ok = cli_parse_double(name, v, 0.001, 1e6, &x);
     if (!strcmp(name, "--glossy-n1"))
         d->glossy_n1 = (float)x;

@@ -5,7 +5,7 @@
 
 expect_exit 0 "render --method linespace --help" -- "$ILLUM" render --method linespace --help
 for o in --grid --linespace-n --inject-rays --inject-depth --blur --occlusion-test --fallback \
-         --solid-angle --coarse --coarse-below --glossy-n1 --glossy-n2; do
+         --solid-angle --coarse --coarse-below --trace-first-bounce --glossy-n1 --glossy-n2; do
     expect_stdout -- "$o" "linespace help lists $o"
 done
 
@@ -33,6 +33,9 @@ expect_file coarse.pfm "render linespace, coarse level"
 expect_stderr "from the coarse level" "render linespace, coarse level: summary line"
 checks=$((checks + 1))
 grep -q '"lookup_coarse":[[:space:]]*[1-9]' coarse.json || fail "coarse.json: no lookup read the coarse level"
+expect_exit 0 "render linespace, final gather" -- "$ILLUM" render cornell --method linespace \
+    --inject-rays 20000 --grid 4 --trace-first-bounce on --width 16 --height 16 --spp 2 -q -o gather.pfm
+expect_file gather.pfm "render linespace, final gather"
 
 # Bad values and options of the wrong method: exit 1 or 2, no output.
 expect_exit 1 "--grid 0" -- "$ILLUM" render cornell --method linespace --grid 0 -q -o bad.exr
@@ -45,6 +48,7 @@ expect_stderr "neither on nor off" "--fallback maybe"
 expect_exit 1 "--coarse-below 0" -- "$ILLUM" render cornell --method linespace --coarse-below 0 -q -o bad.exr
 expect_exit 1 "--coarse-below 256" -- "$ILLUM" render cornell --method linespace --coarse-below 256 -q -o bad.exr
 expect_exit 1 "--coarse sometimes" -- "$ILLUM" render cornell --method linespace --coarse sometimes -q -o bad.exr
+expect_exit 1 "--trace-first-bounce 2" -- "$ILLUM" render cornell --method linespace --trace-first-bounce 2 -q -o bad.exr
 expect_exit 1 "--glossy-n2 below n1" -- "$ILLUM" render cornell --method linespace --glossy-n1 50 \
     --glossy-n2 20 -q -o bad.exr
 expect_stderr "below --glossy-n1" "--glossy-n2 below n1"

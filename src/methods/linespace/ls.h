@@ -36,6 +36,7 @@ typedef struct il_ls_settings {
     bool occlusion_test, fallback, solid_angle;
     bool coarse;            /* build a coarse level, read where an entry has */
     uint32_t coarse_below;  /* fewer deposits than this (they count as empty) */
+    bool trace_first_bounce; /* read only after one non-delta bounce was traced */
     float n1, n2;           /* glossy thresholds on the Phong exponent */
     uint32_t max_depth;     /* of the camera paths */
 } il_ls_settings;

@@ -19,7 +19,10 @@
  * traces on, as the path tracer, instead of giving nothing).  Phong lobes
  * sharper than n2 always trace on, below n1 read the Linespace; between,
  * the Linespace is read with probability (n2 - e) / (n2 - n1), which blends
- * the two estimates linearly. */
+ * the two estimates linearly.  The final gather (Jensen 2001, sec. 9.3,
+ * as the photon mapper's) traces the first non-delta bounce on and reads
+ * at the next non-delta hit, where the field's per-voxel error is averaged
+ * over the first hit's hemisphere. */
 #include <math.h>
 #include <stdatomic.h>
 #include <string.h>
@@ -73,6 +76,7 @@ typedef struct ls_path {
     il_vec3 L, beta;
     il_ray ray;                    /* the next ray to trace */
     bool specular;                 /* no non-delta bounce yet */
+    bool traced;                   /* a non-delta bounce was traced on, not read */
     uint32_t depth;                /* scattering events before `ray` */
     bool shadow, read;             /* pending: shadow_ray's light, read_L */
     il_ray shadow_ray;
@@ -96,6 +100,7 @@ static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
     p->beta = v3s(1.0f);
     p->ray = (il_ray){.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
     p->specular = true;
+    p->traced = false;
     p->depth = 0;
     p->shadow = p->read = false;
     p->rays = 1;                   /* the camera ray */
@@ -142,6 +147,7 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
         return LS_STOP;
     p->beta = p->next;
     p->specular = false;
+    p->traced = true;
     return path_advance(m->scene, p, p->x, p->ng, p->wi, p->rr_u);
 }
 
@@ -209,7 +215,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
                 return LS_STOP;
             next = v3_mul(p->beta, bs.weight);
         }
-        if (u[3].x < lookup_probability(m, mat)) {
+        if ((p->traced || !m->set.trace_first_bounce) && u[3].x < lookup_probability(m, mat)) {
             cnt->lookups++;
             p->x = surf->p;
             p->ng = surf->ng;
@@ -234,6 +240,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         }
         p->beta = next;
         p->specular = false;
+        p->traced = true;
     }
     return path_advance(s, p, surf->p, surf->ng, bs.wi, u[3].y);
 }

@@ -39,9 +39,12 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
     out->inject_rays = d->inject_rays ? d->inject_rays : 1000000u;
     out->max_depth = max_depth ? max_depth : 8u;
     /* A light path's segment k has scattered k times; read at a camera
-     * vertex it scatters once more (the path tracer's max_depth counts
-     * scattering events). */
-    out->inject_depth = d->inject_depth ? d->inject_depth : (out->max_depth > 1 ? out->max_depth - 1 : 0);
+     * vertex it scatters once more, or twice when the first bounce is
+     * traced (the path tracer's max_depth counts scattering events). */
+    out->trace_first_bounce = d->trace_first_bounce;
+    uint32_t camera_bounces = out->trace_first_bounce ? 2u : 1u;
+    out->inject_depth = d->inject_depth ? d->inject_depth
+                                        : (out->max_depth > camera_bounces ? out->max_depth - camera_bounces : 0);
     out->blur = d->blur;
     out->occlusion_test = !d->no_occlusion_test;
     out->fallback = !d->no_fallback;
