@@ -19,7 +19,7 @@
  * traces on, as the path tracer, instead of giving nothing).  Phong lobes
  * sharper than n2 always trace on, below n1 read the Linespace; between,
  * the Linespace is read with probability (n2 - e) / (n2 - n1), which blends
- * the two estimates linearly.  The final gather (Jensen 2001, sec. 9.3,
+ * the two estimates linearly.  The final gather (Jensen 2001, 9.3.2,
  * as the photon mapper's) traces the first non-delta bounce on and reads
  * at the next non-delta hit, where the field's per-voxel error is averaged
  * over the first hit's hemisphere. */
