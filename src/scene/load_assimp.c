@@ -67,6 +67,50 @@ static bool has_ext(const char *path, const char *ext)
     return n > m && strcasecmp(path + n - m, ext) == 0;
 }
 
+/* Drops the faces that have no vertex indices (a corrupt PLY can hold
+ * them), which assimp 5.2's triangulation does not expect: it aborts the
+ * program (an ai_assert in TriangulateProcess.cpp) instead of failing.
+ * Each mesh's primitive types are recomputed from the faces kept.  Faces
+ * are swapped, not copied, so that every index array stays owned by one
+ * face for assimp to free.  A mesh whose faces are all empty is an error
+ * (false, the scene untouched): a mesh left with no faces makes the
+ * post-processing fail, and assimp 5.2 crashes releasing the scene then.
+ * *dropped: how many were dropped. */
+static bool drop_empty_faces(struct aiScene *ai, uint64_t *dropped)
+{
+    *dropped = 0;
+    for (unsigned m = 0; m < ai->mNumMeshes; m++) {
+        const struct aiMesh *mesh = ai->mMeshes[m];
+        unsigned f = 0;
+        while (f < mesh->mNumFaces && mesh->mFaces[f].mNumIndices == 0)
+            f++;
+        if (mesh->mNumFaces > 0 && f == mesh->mNumFaces)
+            return false;
+    }
+    for (unsigned m = 0; m < ai->mNumMeshes; m++) {
+        struct aiMesh *mesh = ai->mMeshes[m];
+        unsigned kept = 0, types = 0;
+        for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+            struct aiFace face = mesh->mFaces[f];
+            unsigned n = face.mNumIndices;
+            if (n == 0)
+                continue;
+            mesh->mFaces[f] = mesh->mFaces[kept];
+            mesh->mFaces[kept++] = face;
+            types |= n == 1 ? aiPrimitiveType_POINT
+                   : n == 2 ? aiPrimitiveType_LINE
+                   : n == 3 ? aiPrimitiveType_TRIANGLE
+                            : aiPrimitiveType_POLYGON;
+        }
+        if (kept < mesh->mNumFaces) {
+            *dropped += mesh->mNumFaces - kept;
+            mesh->mNumFaces = kept;
+            mesh->mPrimitiveTypes = types;
+        }
+    }
+    return true;
+}
+
 /* ---------------------------------------------------------------- textures */
 
 /* Decodes an embedded texture: compressed (PNG/JPEG bytes) or raw BGRA8 texels. */
@@ -725,18 +769,29 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
             return cs;
     }
 
-    /* No normal generation: a mesh without normals is shaded flat with its
-     * geometric normal, so flat faces stay flat.  Degenerate faces are not
-     * removed here: il_scene_add_mesh drops and counts them. */
-    unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
-    const struct aiScene *ai = aiImportFile(path, flags);
+    /* Read and validated first, then faces without indices dropped, then
+     * triangulated.  No normal generation: a mesh without normals is shaded
+     * flat with its geometric normal, so flat faces stay flat.  Degenerate
+     * faces are not removed here: il_scene_add_mesh drops and counts them. */
+    const struct aiScene *ai = aiImportFile(path, aiProcess_ValidateDataStructure);
     if (!ai) {
         if ((has_ext(path, ".gltf") || has_ext(path, ".glb")) && gltf_diagnose(path, err))
             return IL_ERR_FORMAT;
         const char *msg = aiGetErrorString();
         return il_fail(err, IL_ERR_FORMAT, "%s: %s", path,
                        msg && msg[0] ? msg : "not a mesh file assimp can read");
+    }
+    uint64_t empty_faces = 0;
+    if (!drop_empty_faces((struct aiScene *)ai, &empty_faces)) {
+        aiReleaseImport(ai);
+        return il_fail(err, IL_ERR_FORMAT, "%s: a mesh has faces but none with vertex indices", path);
+    }
+    ai = aiApplyPostProcessing(ai, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                       aiProcess_SortByPType);
+    if (!ai) { /* assimp has released the scene */
+        const char *msg = aiGetErrorString();
+        return il_fail(err, IL_ERR_FORMAT, "%s: %s", path,
+                       msg && msg[0] ? msg : "its faces could not be triangulated");
     }
     if (!ai->mRootNode || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
         aiReleaseImport(ai);
@@ -767,6 +822,9 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
     s = walk_nodes(&L, ai->mRootNode, &root, 0);
     if (s != IL_OK)
         goto done;
+    if (empty_faces)
+        il_scene_warn(scene, "%s: faces without vertex indices ignored (%llu)", path,
+                      (unsigned long long)empty_faces);
     if (L.skipped_faces)
         il_scene_warn(scene, "%s: %llu points/lines ignored (only triangles are rendered)", path,
                       (unsigned long long)L.skipped_faces);

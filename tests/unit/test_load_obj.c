@@ -344,6 +344,32 @@ static void test_bad_files(void)
     CHECK(load_err(check_tmp_dir(), &err) == IL_ERR_IO);
 }
 
+/* PLY faces without vertex indices, on which assimp 5.2's triangulation
+ * aborts the program: dropped with a warning; a mesh of nothing but such
+ * faces is an error. */
+static void test_empty_faces(void)
+{
+    const char *head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face %d\nproperty list uchar int vertex_indices\n"
+                       "end_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n%s";
+    char text[512];
+    snprintf(text, sizeof text, head, 3, "3 0 1 2\n0\n4 0 1 3 2\n");
+    write_text(tmp("empty-face.ply"), text);
+    il_scene *s = load_ok(tmp("empty-face.ply"));
+    if (s) {
+        il_scene_info info;
+        il_scene_get_info(s, &info);
+        CHECK(info.num_triangles == 3); /* the triangle and the quad's two */
+        CHECK(any_warning_contains(s, "faces without vertex indices ignored (1)"));
+        il_scene_release(s);
+    }
+    il_error err = {0};
+    snprintf(text, sizeof text, head, 2, "0\n0\n");
+    write_text(tmp("all-empty.ply"), text);
+    CHECK(load_err(tmp("all-empty.ply"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "all-empty.ply") && contains(err.message, "vertex indices"));
+}
+
 static void test_nan_and_degenerate(void)
 {
     il_error err = {0};
@@ -493,6 +519,7 @@ int main(void)
     test_cornell_original();
     test_mtl_mapping();
     test_bunny_ply();
+    test_empty_faces();
     test_3ds_round_trip();
     test_bad_files();
     test_nan_and_degenerate();
