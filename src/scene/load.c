@@ -60,8 +60,8 @@ il_status il_scene_load(const char *path, const il_load_desc *desc, il_scene **o
 
     if (s == IL_OK && scene->num_meshes == 0)
         s = scene->dropped_triangles
-                ? il_fail(err, IL_ERR_INVALID, "%s: no triangles (all %llu dropped: NaN/Inf "
-                          "coordinates or zero area)", path,
+                ? il_fail(err, IL_ERR_INVALID, "%s: no triangles (all %llu dropped: NaN/Inf or "
+                          "out-of-range coordinates, or zero area)", path,
                           (unsigned long long)scene->dropped_triangles)
                 : il_fail(err, IL_ERR_INVALID, "%s: no triangles", path);
     if (s != IL_OK) {

@@ -830,8 +830,9 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
                       (unsigned long long)L.skipped_faces);
     if (scene->num_meshes == meshes_before) {
         uint64_t dropped = scene->dropped_triangles - dropped_before;
-        s = dropped ? il_fail(err, IL_ERR_INVALID, "%s: no triangles (all %llu dropped: NaN/Inf "
-                              "coordinates or zero area)", path, (unsigned long long)dropped)
+        s = dropped ? il_fail(err, IL_ERR_INVALID, "%s: no triangles (all %llu dropped: NaN/Inf or "
+                              "out-of-range coordinates, or zero area)", path,
+                              (unsigned long long)dropped)
                     : il_fail(err, IL_ERR_INVALID, "%s: no triangles", path);
         goto done;
     }

@@ -635,7 +635,8 @@ static il_status parse_mesh(jctx *c, const cJSON *mesh, const char *where)
     if (s != IL_OK)
         return il_load_prefix_error(c->err, s, c->path, where);
     if (c->scene->num_meshes == before)
-        return bad(c, where, "no triangles (all dropped: NaN/Inf coordinates or zero area)");
+        return bad(c, where,
+                   "no triangles (all dropped: NaN/Inf or out-of-range coordinates, or zero area)");
     return IL_OK;
 }
 

@@ -70,6 +70,18 @@ void il_scene_warn(il_scene *s, const char *fmt, ...)
 
 static bool vec_finite_nonneg(il_vec3 v) { return v3_is_finite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0; }
 
+/* A point with a coordinate beyond ±10^15 scene units is treated like a NaN
+ * one (docs/scene-format.md): Embree takes no ray whose origin or direction
+ * has a component above about 1.8e18 (it aborts the program on one), and a
+ * shadow ray's direction is the difference of two points. */
+#define IL_MAX_COORD 1e15f
+
+static bool point_in_range(il_vec3 p)
+{
+    return v3_is_finite(p) && fabsf(p.x) <= IL_MAX_COORD && fabsf(p.y) <= IL_MAX_COORD &&
+           fabsf(p.z) <= IL_MAX_COORD;
+}
+
 il_status il_scene_add_material(il_scene *s, const il_material_desc *d, uint32_t *out_index,
                                 il_error *err)
 {
@@ -137,7 +149,7 @@ static bool triangle_ok(const float *pos, const uint32_t *tri, uint32_t nv)
     for (int k = 0; k < 3; k++) {
         const float *q = pos + 3 * (size_t)tri[k];
         p[k] = v3(q[0], q[1], q[2]);
-        if (!v3_is_finite(p[k]))
+        if (!point_in_range(p[k]))
             return false;
     }
     il_vec3 c = v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0]));
@@ -172,8 +184,8 @@ il_status il_scene_add_mesh(il_scene *s, const il_mesh_desc *d, il_error *err)
     uint32_t dropped = d->num_triangles - nt;
     if (dropped) {
         s->dropped_triangles += dropped;
-        il_scene_warn(s, "mesh '%s': dropped %u of %u triangles (NaN/Inf coordinates, bad "
-                         "indices or zero area)", name, dropped, d->num_triangles);
+        il_scene_warn(s, "mesh '%s': dropped %u of %u triangles (NaN/Inf or out-of-range "
+                         "coordinates, bad indices or zero area)", name, dropped, d->num_triangles);
     }
     if (nt == 0) {
         free(keep);
@@ -199,9 +211,9 @@ il_status il_scene_add_mesh(il_scene *s, const il_mesh_desc *d, il_error *err)
     }
     for (uint32_t v = 0; v < d->num_vertices; v++) {
         il_vec3 p = v3(d->positions[3 * v], d->positions[3 * v + 1], d->positions[3 * v + 2]);
-        /* Vertices used only by dropped triangles may be non-finite: zero them
-         * so bounds stay finite. */
-        m->positions[v] = v3_is_finite(p) ? p : v3s(0.0f);
+        /* Vertices used only by dropped triangles may be non-finite or out
+         * of range: zero them so bounds stay finite. */
+        m->positions[v] = point_in_range(p) ? p : v3s(0.0f);
     }
     if (d->normals) {
         m->normals = il_malloc((size_t)d->num_vertices * sizeof(il_vec3), err);
@@ -242,6 +254,10 @@ il_status il_scene_add_light(il_scene *s, const il_light_desc *d, il_error *err)
     if (!v3_is_finite(d->position) || !v3_is_finite(d->direction) || !vec_finite_nonneg(d->intensity))
         return il_fail(err, IL_ERR_INVALID, "light: position, direction and intensity must be "
                                             "finite (intensity >= 0)");
+    if (!point_in_range(d->position))
+        return il_fail(err, IL_ERR_INVALID, "light: position (%g, %g, %g) is out of range "
+                       "(coordinates within +-1e15)", (double)d->position.x, (double)d->position.y,
+                       (double)d->position.z);
     if (!(d->spot_angle >= 0.0f && d->spot_angle <= 180.0f) || !(d->spot_exponent >= 0.0f) ||
         !isfinite(d->spot_exponent))
         return il_fail(err, IL_ERR_INVALID, "spot light: angle must be in [0, 180] degrees and the "
@@ -257,6 +273,8 @@ il_status il_scene_set_camera(il_scene *s, const il_camera_desc *d, il_error *er
 {
     if (!v3_is_finite(d->position) || !v3_is_finite(d->target) || !v3_is_finite(d->up))
         return il_fail(err, IL_ERR_INVALID, "camera: position, target and up must be finite");
+    if (!point_in_range(d->position) || !point_in_range(d->target))
+        return il_fail(err, IL_ERR_INVALID, "camera: position and target must lie within +-1e15");
     if (!(d->fov_y >= 0.0f && d->fov_y < 180.0f))
         return il_fail(err, IL_ERR_INVALID, "camera: fov %g must be in (0, 180) degrees",
                        (double)d->fov_y);

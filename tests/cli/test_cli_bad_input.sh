@@ -72,6 +72,15 @@ echo '{"position": [1, 2]}' > badcam.json
 expect_exit 1 "bad camera file" -- "$ILLUM" render cornell --camera-file badcam.json -o h.png
 expect_no_file h.png "camera files"
 
+# Coordinates beyond +-1e15: Embree aborts the program on a ray from there
+# (the photon mapper's emission rays did), so the scene is refused first.
+echo '{"meshes": [{"positions": [0,0,0, 1,0,0, 0,1,0]}],
+       "lights": [{"type": "point", "position": [1e20, 0, 1], "intensity": [1, 1, 1]}]}' > farlight.json
+expect_exit 1 "light beyond 1e15" -- "$ILLUM" render farlight.json --method photon --spp 1 -o far.png
+expect_stderr "out of range" "light beyond 1e15"
+expect_exit 1 "camera beyond 1e15" -- "$ILLUM" render cornell --camera-pos 0,0,1e30 --spp 1 -o far.png
+expect_no_file far.png "coordinates beyond 1e15"
+
 expect_exit 1 "output into a missing folder" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o no/such/dir/i.png
 expect_no_file no/such/dir/i.png "missing folder"
 

@@ -39,6 +39,14 @@ static void test_defaults_and_validation(void)
     CHECK(in.num_warnings == 1);
     CHECK(il_scene_warning(s, 0) && strstr(il_scene_warning(s, 0), "dropped 3 of 4") != NULL);
     CHECK(il_scene_warning(s, 1) == NULL);
+    /* A coordinate beyond +-1e15 is dropped like a NaN (Embree aborts the
+     * program on a ray from so far). */
+    float far[] = {0, 0, 0, 1, 0, 0, 0, 2e15f, 0};
+    uint32_t tri[] = {0, 1, 2};
+    CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.name = "far", .num_vertices = 3, .num_triangles = 1,
+                                                   .positions = far, .indices = tri}, &err), &err);
+    il_scene_get_info(s, &in);
+    CHECK(in.num_triangles == 1 && in.dropped_triangles == 4);
 
     CHECK(il_scene_commit(s, &err) == IL_ERR_INVALID);
     CHECK(strstr(err.message, "light") != NULL);
@@ -46,6 +54,11 @@ static void test_defaults_and_validation(void)
     /* Lights and cameras are validated. */
     CHECK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_SPOT, .spot_angle = 200}, &err) == IL_ERR_INVALID);
     CHECK(il_scene_add_light(s, &(il_light_desc){.intensity = {INFINITY, 0, 0}}, &err) == IL_ERR_INVALID);
+    CHECK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = {-1e30f, 0, 0},
+                                                 .intensity = {1, 1, 1}}, &err) == IL_ERR_INVALID);
+    CHECK(strstr(err.message, "out of range") != NULL);
+    CHECK(il_scene_set_camera(s, &(il_camera_desc){.position = {0, 0, 2e15f}, .target = {0, 0, 0}}, &err) ==
+          IL_ERR_INVALID);
     CHECK(il_scene_set_camera(s, &(il_camera_desc){.position = {1, 1, 1}, .target = {1, 1, 1}}, &err) == IL_ERR_INVALID);
     CHECK(il_scene_set_camera(s, &(il_camera_desc){.position = {0, 0, 0}, .target = {0, 1, 0}}, &err) == IL_ERR_INVALID);
     CHECK(il_scene_set_camera(s, &(il_camera_desc){.target = {0, 0, -1}, .fov_y = 180}, &err) == IL_ERR_INVALID);
