@@ -83,11 +83,12 @@ typedef enum il_material_type {
 typedef struct il_material_desc {
     const char *name;          /* copied; may be NULL */
     il_material_type type;
-    il_vec3 diffuse;           /* diffuse albedo (DIFFUSE, PHONG) */
+    il_vec3 diffuse;           /* diffuse albedo (DIFFUSE, PHONG); channels above 1
+                                  are clamped to 1, with a scene warning */
     uint32_t diffuse_texture;  /* 0: none, else a handle from il_scene_add_texture;
                                   multiplies `diffuse` */
     il_vec3 specular;          /* PHONG: specular albedo.  MIRROR/DIELECTRIC: tint,
-                                  zero means white */
+                                  zero means white; clamped to 1 as `diffuse` */
     float exponent;            /* PHONG: cos^n exponent; 0 means 32 */
     float ior;                 /* DIELECTRIC: index of refraction; 0 means 1.5 */
     il_vec3 emission;          /* emitted radiance, W/(sr m^2); zero: not an emitter */
@@ -191,7 +192,8 @@ il_status il_scene_load(const char *path_or_name, const il_load_desc *desc,
 il_status il_scene_add_material(il_scene *scene, const il_material_desc *desc,
                                 uint32_t *out_index, il_error *err);
 /* Adds a texture of linear RGB floats (3 per texel, rows top to bottom).
- * Handles start at 1. */
+ * Handles start at 1.  Values are clamped to [0, 1] (it multiplies an
+ * albedo; a warning counts those above 1), NaN and Inf become 0. */
 il_status il_scene_add_texture(il_scene *scene, uint32_t width, uint32_t height,
                                const float *rgb, uint32_t *out_handle, il_error *err);
 /* Copies the mesh.  Triangles with NaN/Inf coordinates or zero area are

@@ -70,6 +70,17 @@ void il_scene_warn(il_scene *s, const char *fmt, ...)
 
 static bool vec_finite_nonneg(il_vec3 v) { return v3_is_finite(v) && v.x >= 0 && v.y >= 0 && v.z >= 0; }
 
+/* A surface cannot reflect more light than it receives: an albedo or tint
+ * above 1 creates energy at every bounce, so the path tracer's image grows
+ * with max-depth and the radiosity solvers never converge.  Such channels
+ * are clamped to 1 (docs/materials.md). */
+static il_vec3 clamp_albedo(il_vec3 c, bool *clamped)
+{
+    il_vec3 r = v3_min(c, v3s(1.0f));
+    *clamped |= !(r.x == c.x && r.y == c.y && r.z == c.z);
+    return r;
+}
+
 /* A point with a coordinate beyond ±10^15 scene units is treated like a NaN
  * one (docs/scene-format.md): Embree takes no ray whose origin or direction
  * has a component above about 1.8e18 (it aborts the program on one), and a
@@ -104,9 +115,13 @@ il_status il_scene_add_material(il_scene *s, const il_material_desc *d, uint32_t
     memset(m, 0, sizeof *m);
     copy_name(m->name, d->name, "unnamed");
     m->type = d->type;
-    m->diffuse = d->diffuse;
+    bool clamped = false;
+    m->diffuse = clamp_albedo(d->diffuse, &clamped);
     m->diffuse_texture = d->diffuse_texture;
-    m->specular = d->specular;
+    m->specular = clamp_albedo(d->specular, &clamped);
+    if (clamped)
+        il_scene_warn(s, "material '%s': albedo above 1 clamped to 1 (a surface cannot reflect "
+                         "more light than it receives)", m->name);
     if ((d->type == IL_MATERIAL_MIRROR || d->type == IL_MATERIAL_DIELECTRIC) && v3_is_zero(m->specular))
         m->specular = v3s(1.0f);
     m->exponent = d->exponent > 0.0f ? d->exponent : 32.0f;
@@ -132,8 +147,16 @@ il_status il_scene_add_texture(il_scene *s, uint32_t w, uint32_t h, const float 
     float *copy = il_malloc(n * sizeof(float), err);
     if (!copy)
         return IL_ERR_MEMORY;
-    for (size_t i = 0; i < n; i++)
-        copy[i] = isfinite(rgb[i]) && rgb[i] > 0.0f ? rgb[i] : 0.0f;
+    /* A texture multiplies a diffuse albedo: values outside [0, 1] (HDR
+     * images, NaN) are clamped, as a material's albedo is. */
+    size_t above = 0;
+    for (size_t i = 0; i < n; i++) {
+        above += isfinite(rgb[i]) && rgb[i] > 1.0f;
+        copy[i] = isfinite(rgb[i]) && rgb[i] > 0.0f ? il_minf(rgb[i], 1.0f) : 0.0f;
+    }
+    if (above)
+        il_scene_warn(s, "texture %u (%ux%u): %zu values above 1 clamped to 1 (a texture "
+                         "multiplies an albedo)", s->num_textures + 1, w, h, above);
     s->textures[s->num_textures] = (il_texture){w, h, copy};
     s->num_textures++;
     if (out_handle)
