@@ -763,8 +763,8 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
         return il_fail(err, IL_ERR_IO, "%s: no such file", path);
     fclose(f);
 
-    if (has_ext(path, ".obj")) {
-        il_status cs = obj_check(path, err);
+    if (has_ext(path, ".obj") || has_ext(path, ".ply")) {
+        il_status cs = has_ext(path, ".obj") ? obj_check(path, err) : il_ply_check(path, err);
         if (cs != IL_OK)
             return cs;
     }

@@ -29,6 +29,12 @@ typedef struct il_assimp_options {
 il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_options *opt,
                             il_error *err);
 
+/* A PLY file's element and list counts against its size (ply_check.c):
+ * IL_ERR_FORMAT naming the file when a count is more than the rest of the
+ * file can hold (assimp would allocate for it first); IL_OK otherwise,
+ * also for what the check does not understand. */
+il_status il_ply_check(const char *path, il_error *err);
+
 /* Reads a whole file into a NUL-terminated buffer (free() it); IL_ERR_IO naming
  * the file when it cannot be read. */
 il_status il_load_read_file(const char *path, char **out, size_t *size, il_error *err);

@@ -36,6 +36,13 @@ expect_exit 1 "empty OBJ" -- "$ILLUM" render empty.obj -o d.png
 expect_stderr "empty.obj" "empty OBJ"
 expect_no_file d.png "empty OBJ"
 
+# A PLY claiming two billion vertices in a few bytes: refused before assimp
+# allocates for them.
+printf 'ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n' > huge.ply
+expect_exit 1 "PLY count beyond the file" -- "$ILLUM" render huge.ply -o h.png
+expect_stderr "huge.ply: element 'vertex': 2000000000 instances" "PLY count beyond the file"
+expect_no_file h.png "PLY count beyond the file"
+
 # A lit-less scene: one grey triangle.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > dark.obj
 expect_exit 1 "scene without lights" -- "$ILLUM" render dark.obj -o e.png

@@ -370,6 +370,79 @@ static void test_empty_faces(void)
     CHECK(contains(err.message, "all-empty.ply") && contains(err.message, "vertex indices"));
 }
 
+/* A PLY whose element or list counts are more than the file can hold is
+ * refused before assimp reads it (assimp would first allocate for the
+ * count: 10-23 GB for these few bytes); valid files, ASCII with blank lines
+ * and binary of either byte order with 4-byte list counts, still load. */
+static void test_ply_counts(void)
+{
+    static const char verts[] = "element vertex %s\nproperty float x\nproperty float y\nproperty float z\n"
+                                "element face 2\nproperty list %s int vertex_indices\nend_header\n";
+    char text[512];
+    il_error err = {0};
+
+    /* ASCII: a face of 1.2e9 indices; 2e9 vertices in a 150-byte file. */
+    snprintf(text, sizeof text, "ply\nformat ascii 1.0\n");
+    snprintf(text + strlen(text), sizeof text - strlen(text), verts, "3", "uchar");
+    strcat(text, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n1200000000 0 1 2\n");
+    write_text(tmp("long-face.ply"), text);
+    CHECK(load_err(tmp("long-face.ply"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "long-face.ply") && contains(err.message, "'face'") &&
+          contains(err.message, "1200000000") && contains(err.message, "corrupt or truncated"));
+    snprintf(text, sizeof text, "ply\nformat ascii 1.0\n");
+    snprintf(text + strlen(text), sizeof text - strlen(text), verts, "2000000000", "uchar");
+    strcat(text, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n");
+    write_text(tmp("many-vertices.ply"), text);
+    CHECK(load_err(tmp("many-vertices.ply"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "'vertex'") && contains(err.message, "2000000000"));
+
+    /* ASCII, valid: blank lines and trailing spaces. */
+    snprintf(text, sizeof text, "ply\nformat ascii 1.0\ncomment ok\n");
+    snprintf(text + strlen(text), sizeof text - strlen(text), verts, "4", "uchar");
+    strcat(text, "0 0 0\n\n1 0 0 \n0 1 0\n1 1 0\r\n3 0 1 2\n3 1 3 2  \n");
+    write_text(tmp("ascii-ok.ply"), text);
+    il_scene *s = load_ok(tmp("ascii-ok.ply"));
+    if (s) {
+        CHECK(s->num_meshes == 1 && s->meshes[0].num_triangles == 2);
+        il_scene_release(s);
+    }
+
+    /* Binary, both byte orders, 4-byte list counts: valid, then one face
+     * claiming 1.2e9 indices, then 2e9 vertices. */
+    for (int big = 0; big < 2; big++) {
+        const char *name[3][2] = {{"le-ok.ply", "be-ok.ply"}, {"le-face.ply", "be-face.ply"},
+                                  {"le-count.ply", "be-count.ply"}};
+        for (int variant = 0; variant < 3; variant++) {
+            unsigned char buf[512];
+            int n = snprintf((char *)buf, sizeof buf, "ply\nformat binary_%s_endian 1.0\n",
+                             big ? "big" : "little");
+            n += snprintf((char *)buf + n, sizeof buf - (size_t)n, verts,
+                          variant == 2 ? "2000000000" : "3", "uint");
+            const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+            const uint32_t face[2][4] = {{3, 0, 1, 2}, {variant == 1 ? 1200000000u : 3u, 0, 2, 1}};
+            const unsigned char *words[2] = {(const unsigned char *)xyz, (const unsigned char *)face};
+            const size_t counts[2] = {9, 8};
+            for (int w = 0; w < 2; w++)
+                for (size_t i = 0; i < counts[w]; i++)   /* 4-byte words, host is little-endian */
+                    for (int b = 0; b < 4; b++)
+                        buf[n++] = words[w][4 * i + (size_t)(big ? 3 - b : b)];
+            write_file(tmp(name[variant][big]), buf, (size_t)n);
+            if (variant == 0) {
+                s = load_ok(tmp(name[variant][big]));
+                if (s) {
+                    CHECK(s->num_meshes == 1 && s->meshes[0].num_triangles == 2);
+                    il_scene_release(s);
+                }
+            } else {
+                CHECK(load_err(tmp(name[variant][big]), &err) == IL_ERR_FORMAT);
+                CHECK(contains(err.message, name[variant][big]) &&
+                      contains(err.message, variant == 1 ? "1200000000" : "2000000000") &&
+                      contains(err.message, "corrupt or truncated"));
+            }
+        }
+    }
+}
+
 static void test_nan_and_degenerate(void)
 {
     il_error err = {0};
@@ -520,6 +593,7 @@ int main(void)
     test_mtl_mapping();
     test_bunny_ply();
     test_empty_faces();
+    test_ply_counts();
     test_3ds_round_trip();
     test_bad_files();
     test_nan_and_degenerate();
