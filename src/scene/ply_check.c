@@ -8,9 +8,10 @@
  * format", 1994) without storing anything, and refuses any count that the
  * rest of the file is too short to hold: in a binary file each value
  * takes at least its size, in an ASCII one each instance a line and each
- * list value a character and a separator.  Whatever it does not understand
- * (an unknown type, a header it cannot read, a binary body that ends early)
- * it leaves to assimp, which reports it. */
+ * list value a character and a separator.  A header line that is not PLY
+ * is refused too (assimp 5.2 loops forever on some, such as "element
+ * vertex 4.3" in a binary file).  A binary body that ends early is left to
+ * assimp, which reports it. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -168,56 +169,94 @@ static il_status walk_element(ply_reader *r, const ply_element *e)
     return s;
 }
 
-/* The header's lines up to "end_header" into elements; false when it is not
- * one this check understands. */
-static bool read_header(char *text, int *format, ply_element *elems, int max_elems, int *num_elems,
-                        ply_property *props, int max_props, char **body)
+enum { PLY_MAX_ELEMS = 64, PLY_MAX_PROPS = 1024 };
+
+typedef struct ply_header {
+    int format;
+    ply_element elems[PLY_MAX_ELEMS];
+    ply_property props[PLY_MAX_PROPS];
+    int num_elems, num_props;
+    char *body;
+} ply_header;
+
+/* One header line (NUL-terminated, after "ply") into h; NULL, or what is
+ * wrong with it.  *skip: valid, but more than this check's tables hold. */
+static const char *header_line(const char *line, ply_header *h, bool *skip)
 {
-    int ne = 0, np = 0;
-    *format = -1;
+    char w[5][32] = {{0}};
+    int fields = sscanf(line, "%31s %31s %31s %31s %31s", w[0], w[1], w[2], w[3], w[4]);
+    if (fields <= 0 || !strcmp(w[0], "comment") || !strcmp(w[0], "obj_info"))
+        return NULL;
+    if (!strcmp(w[0], "format")) {
+        h->format = !strcmp(w[1], "ascii")                  ? PLY_ASCII
+                    : !strcmp(w[1], "binary_little_endian") ? PLY_LITTLE
+                    : !strcmp(w[1], "binary_big_endian")    ? PLY_BIG
+                                                            : -1;
+        return h->format < 0 || fields != 3 ? "the format is not ascii, binary_little_endian or "
+                                              "binary_big_endian with a version"
+                                            : NULL;
+    }
+    if (!strcmp(w[0], "element")) {
+        char *stop;
+        if (fields != 3 || !(w[2][0] >= '0' && w[2][0] <= '9'))
+            return "an element needs a name and a whole count";
+        if (h->num_elems == PLY_MAX_ELEMS) {
+            *skip = true;
+            return NULL;
+        }
+        ply_element *e = &h->elems[h->num_elems++];
+        memcpy(e->name, w[1], sizeof e->name);
+        e->count = strtoull(w[2], &stop, 10);
+        e->props = h->props + h->num_props;
+        e->num_props = 0;
+        return *stop ? "an element needs a name and a whole count" : NULL;
+    }
+    if (!strcmp(w[0], "property")) {
+        bool list = !strcmp(w[1], "list");
+        ply_property q = {list ? type_size(w[3]) : type_size(w[1]), list ? type_size(w[2]) : 0};
+        if (h->num_elems == 0)
+            return "a property before any element";
+        if (q.size == 0 || fields != (list ? 5 : 3) || (list && (q.count_size == 0 || q.count_size == 8)))
+            return "a property needs a known type (and a list an integer count type) and a name";
+        if (h->num_props == PLY_MAX_PROPS) {
+            *skip = true;
+            return NULL;
+        }
+        h->props[h->num_props++] = q;
+        h->elems[h->num_elems - 1].num_props++;
+        return NULL;
+    }
+    return "not a PLY header line (format, element, property, comment, obj_info, end_header)";
+}
+
+/* The header up to "end_header" into h.  IL_OK with *skip set when it is
+ * valid but too large to check. */
+static il_status read_header(char *text, const char *path, ply_header *h, bool *skip, il_error *err)
+{
+    h->format = -1;
+    h->num_elems = h->num_props = 0;
     char *line = text;
-    for (int lineno = 0;; lineno++) {
+    for (int lineno = 1;; lineno++) {
         char *nl = strchr(line, '\n');
         if (!nl)
-            return false;
+            return il_fail(err, IL_ERR_FORMAT, "%s: the PLY header has no end_header line: the "
+                           "file is corrupt or truncated", path);
         *nl = '\0';
         if (nl > line && nl[-1] == '\r')
             nl[-1] = '\0';
-        char w[4][32] = {{0}};
-        int fields = sscanf(line, "%31s %31s %31s %31s", w[0], w[1], w[2], w[3]);
-        if (lineno == 0 && strcmp(w[0], "ply"))
-            return false;
-        if (!strcmp(w[0], "end_header")) {
-            *body = nl + 1;
-            *num_elems = ne;
-            return *format >= 0;
+        if (lineno == 1 && !(!strncmp(line, "ply", 3) && (line[3] == '\0' || line[3] == ' ')))
+            return il_fail(err, IL_ERR_FORMAT, "%s: not a PLY file (its first line is not \"ply\")",
+                           path);
+        if (!strncmp(line, "end_header", 10) && (line[10] == '\0' || line[10] == ' ')) {
+            h->body = nl + 1;
+            if (h->format < 0)
+                return il_fail(err, IL_ERR_FORMAT, "%s: the PLY header has no format line", path);
+            return IL_OK;
         }
-        if (!strcmp(w[0], "format") && fields >= 2)
-            *format = !strcmp(w[1], "ascii")                  ? PLY_ASCII
-                      : !strcmp(w[1], "binary_little_endian") ? PLY_LITTLE
-                      : !strcmp(w[1], "binary_big_endian")    ? PLY_BIG
-                                                              : -1;
-        else if (!strcmp(w[0], "element") && fields == 3) {
-            char *stop;
-            if (ne == max_elems || w[2][0] == '-')
-                return false;
-            ply_element *e = &elems[ne++];
-            memcpy(e->name, w[1], sizeof e->name);
-            e->count = strtoull(w[2], &stop, 10);
-            e->props = props + np;
-            e->num_props = 0;
-            if (*stop)
-                return false;
-        } else if (!strcmp(w[0], "property")) {
-            if (ne == 0 || np == max_props)
-                return false;
-            bool list = !strcmp(w[1], "list");
-            ply_property q = {list ? type_size(w[3]) : type_size(w[1]), list ? type_size(w[2]) : 0};
-            if (q.size == 0 || (list && (fields < 4 || q.count_size == 0 || q.count_size == 8)))
-                return false;
-            props[np++] = q;
-            elems[ne - 1].num_props++;
-        }
+        const char *why = lineno == 1 ? NULL : header_line(line, h, skip);
+        if (why)
+            return il_fail(err, IL_ERR_FORMAT, "%s: line %d of the PLY header: %s: the file is "
+                           "corrupt", path, lineno, why);
         line = nl + 1;
     }
 }
@@ -229,17 +268,20 @@ il_status il_ply_check(const char *path, il_error *err)
     il_status s = il_load_read_file(path, &text, &n, err);
     if (s != IL_OK)
         return s;
-    enum { MAX_ELEMS = 64, MAX_PROPS = 1024 };
-    ply_element elems[MAX_ELEMS];
-    ply_property props[MAX_PROPS];
-    int format, num_elems;
-    char *body;
-    if (read_header(text, &format, elems, MAX_ELEMS, &num_elems, props, MAX_PROPS, &body)) {
-        ply_reader r = {path, (const unsigned char *)body, (const unsigned char *)text + n, format, err,
-                        false};
-        for (int i = 0; i < num_elems && s == IL_OK && !r.stop; i++)
-            s = walk_element(&r, &elems[i]);
+    ply_header *h = malloc(sizeof *h);
+    if (!h) {
+        free(text);
+        return il_fail(err, IL_ERR_MEMORY, "%s: out of memory", path);
     }
+    bool skip = false;
+    s = read_header(text, path, h, &skip, err);
+    if (s == IL_OK && !skip) {
+        ply_reader r = {path, (const unsigned char *)h->body, (const unsigned char *)text + n, h->format,
+                        err, false};
+        for (int i = 0; i < h->num_elems && s == IL_OK && !r.stop; i++)
+            s = walk_element(&r, &h->elems[i]);
+    }
+    free(h);
     free(text);
     return s;
 }

@@ -396,6 +396,20 @@ static void test_ply_counts(void)
     CHECK(load_err(tmp("many-vertices.ply"), &err) == IL_ERR_FORMAT);
     CHECK(contains(err.message, "'vertex'") && contains(err.message, "2000000000"));
 
+    /* Headers that are not PLY (assimp loops forever on some of them). */
+    const char *bad_headers[][2] = {
+        {"ply\nformat binary_little_endian 1.0\nelement vertex 4.3\nend_header\n", "whole count"},
+        {"ply\nformat binary_little_endian 1.0\nelementerty float z\nend_header\n", "not a PLY header line"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float\nend_header\n", "known type"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", "no end_header"},
+        {"ply\nelement vertex 0\nend_header\n", "no format"},
+        {"ply?\nformat ascii 1.0\nend_header\n", "not a PLY file"}};
+    for (size_t i = 0; i < sizeof bad_headers / sizeof bad_headers[0]; i++) {
+        write_text(tmp("bad-header.ply"), bad_headers[i][0]);
+        CHECK(load_err(tmp("bad-header.ply"), &err) == IL_ERR_FORMAT);
+        CHECK(contains(err.message, "bad-header.ply") && contains(err.message, bad_headers[i][1]));
+    }
+
     /* ASCII, valid: blank lines and trailing spaces. */
     snprintf(text, sizeof text, "ply\nformat ascii 1.0\ncomment ok\n");
     snprintf(text + strlen(text), sizeof text - strlen(text), verts, "4", "uchar");
