@@ -763,11 +763,11 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
         return il_fail(err, IL_ERR_IO, "%s: no such file", path);
     fclose(f);
 
-    if (has_ext(path, ".obj") || has_ext(path, ".ply")) {
-        il_status cs = has_ext(path, ".obj") ? obj_check(path, err) : il_ply_check(path, err);
-        if (cs != IL_OK)
-            return cs;
-    }
+    il_status cs = has_ext(path, ".obj")   ? obj_check(path, err)
+                   : has_ext(path, ".ply") ? il_ply_check(path, err)
+                                           : IL_OK;
+    if (cs != IL_OK)
+        return cs;
 
     /* Read and validated first, then faces without indices dropped, then
      * triangulated.  No normal generation: a mesh without normals is shaded

@@ -29,10 +29,11 @@ typedef struct il_assimp_options {
 il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_options *opt,
                             il_error *err);
 
-/* A PLY file's element and list counts against its size (ply_check.c):
- * IL_ERR_FORMAT naming the file when a count is more than the rest of the
- * file can hold (assimp would allocate for it first); IL_OK otherwise,
- * also for what the check does not understand. */
+/* A PLY file's header and its element and list counts against its size
+ * (ply_check.c): IL_ERR_FORMAT naming the file when a header line is not
+ * PLY or a count is more than the rest of the file can hold (assimp would
+ * allocate for it first, or loop); IL_OK otherwise, also when a binary
+ * body merely ends early (assimp reports that). */
 il_status il_ply_check(const char *path, il_error *err);
 
 /* Reads a whole file into a NUL-terminated buffer (free() it); IL_ERR_IO naming
