@@ -4,7 +4,7 @@
  *
  *   bench_linespace SCENE [--variant diffuse|glossy|mirror|glass]
  *                   [--inject-rays N] [--grid N] [--linespace-n N] [--blur R]
- *                   [--fallback on|off] [--occlusion-test on|off] [--coarse on|off]
+ *                   [--fallback occluded|on|off] [--occlusion-test on|off] [--coarse on|off]
  *                   [--coarse-below K] [--trace-first-bounce on|off]
  *                   [--max-depth D] [--ref-spp N] [--time S] [--spp N]
  *                   [--threads T] [--width W] [--height H]
@@ -49,8 +49,10 @@ static bool ls_option(const char *a, const char *v, void *user)
         o->ld.n = (uint32_t)atoi(v);
     else if (!strcmp(a, "--blur"))
         o->ld.blur = (float)atof(v);
-    else if (!strcmp(a, "--fallback"))
+    else if (!strcmp(a, "--fallback")) {
         o->ld.no_fallback = !strcmp(v, "off");
+        o->ld.fallback_empty = !strcmp(v, "on");
+    }
     else if (!strcmp(a, "--occlusion-test"))
         o->ld.no_occlusion_test = !strcmp(v, "off");
     else if (!strcmp(a, "--coarse"))
@@ -131,7 +133,7 @@ int main(int argc, char **argv)
     bench_run b = {.prog = "bench_linespace",
                    .usage = "bench_linespace SCENE [--variant diffuse|glossy|mirror|glass] "
                             "[--inject-rays N] [--grid N] [--linespace-n N] [--blur R] "
-                            "[--fallback on|off] [--occlusion-test on|off] [--max-depth D] "
+                            "[--fallback occluded|on|off] [--occlusion-test on|off] [--max-depth D] "
                             "[--ref-spp N] [--time S] [--spp N] [--threads T] [--width W] [--height H]",
                    .width = 128,
                    .height = 128,

@@ -607,8 +607,12 @@ typedef struct il_linespace_desc {
                                   as a fraction of the voxel's smallest side, at most 4;
                                   0 means none */
     bool no_occlusion_test;    /* skip the in-shaft occlusion test (on by default) */
-    bool no_fallback;          /* an empty or occluded shaft gives no light instead of
-                                  tracing on (fallback is on by default) */
+    bool no_fallback;          /* no entry traces on: an occluded one gives no light
+                                  too (by default an occluded entry traces on) */
+    bool fallback_empty;       /* an empty entry (no deposit) traces on too (the
+                                  thesis's fallback variant); off by default: it
+                                  reads as no light, which is unbiased and faster
+                                  (docs/linespace.md, "Fallback") */
     bool no_solid_angle;       /* normalise every shaft as if all subtended the same
                                   solid angle (the thesis's reading; grid patterns) */
     bool coarse;               /* build a coarser level too (N / its smallest prime

@@ -21,8 +21,10 @@ const char cli_linespace_help[] =
     "                         sides, 0 to 4 (default 0: none)\n"
     "  --occlusion-test on|off  test the shaft's triangles between the point and\n"
     "                         the voxel's face (default on)\n"
-    "  --fallback on|off      an empty or occluded shaft traces on (default on) or\n"
-    "                         gives no light (off)\n"
+    "  --fallback occluded|on|off\n"
+    "                         which entries trace on instead of being read: an\n"
+    "                         occluded one (default; an empty one reads as no\n"
+    "                         light), an occluded or empty one (on), none (off)\n"
     "  --solid-angle on|off   normalise each shaft by its own measure (default on)\n"
     "                         or as if all shafts were equal (off: the thesis)\n"
     "  --coarse on|off        an entry with too few deposits reads a coarser level\n"
@@ -73,8 +75,16 @@ static bool parse_value(const char *name, const char *v, il_linespace_desc *d)
     }
     if (!strcmp(name, "--occlusion-test"))
         return parse_onoff(name, v, &d->no_occlusion_test);
-    if (!strcmp(name, "--fallback"))
-        return parse_onoff(name, v, &d->no_fallback);
+    if (!strcmp(name, "--fallback")) {
+        bool occluded = !strcmp(v, "occluded"), on = !strcmp(v, "on"), off = !strcmp(v, "off");
+        if (!occluded && !on && !off) {
+            cli_error("%s: '%s' is none of occluded, on and off", name, v);
+            return false;
+        }
+        d->no_fallback = off;
+        d->fallback_empty = on;
+        return true;
+    }
     if (!strcmp(name, "--solid-angle"))
         return parse_onoff(name, v, &d->no_solid_angle);
     if (!strcmp(name, "--coarse"))

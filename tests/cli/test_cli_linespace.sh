@@ -33,6 +33,13 @@ expect_file coarse.pfm "render linespace, coarse level"
 expect_stderr "from the coarse level" "render linespace, coarse level: summary line"
 checks=$((checks + 1))
 grep -q '"lookup_coarse":[[:space:]]*[1-9]' coarse.json || fail "coarse.json: no lookup read the coarse level"
+for f in on occluded; do
+    expect_exit 0 "render linespace, --fallback $f" -- "$ILLUM" render cornell --method linespace \
+        --inject-rays 20000 --grid 4 --fallback $f --width 16 --height 16 --spp 2 -q -o fallback-$f.pfm
+    expect_file fallback-$f.pfm "render linespace, --fallback $f"
+done
+checks=$((checks + 1))
+cmp -s fallback-on.pfm fallback-occluded.pfm && fail "--fallback on and occluded gave the same image"
 expect_exit 0 "render linespace, final gather" -- "$ILLUM" render cornell --method linespace \
     --inject-rays 20000 --grid 4 --trace-first-bounce on --width 16 --height 16 --spp 2 -q -o gather.pfm
 expect_file gather.pfm "render linespace, final gather"
@@ -44,7 +51,7 @@ expect_exit 1 "--linespace-n 9" -- "$ILLUM" render cornell --method linespace --
 expect_exit 1 "--inject-rays 0" -- "$ILLUM" render cornell --method linespace --inject-rays 0 -q -o bad.exr
 expect_exit 1 "--blur -1" -- "$ILLUM" render cornell --method linespace --blur -1 -q -o bad.exr
 expect_exit 1 "--fallback maybe" -- "$ILLUM" render cornell --method linespace --fallback maybe -q -o bad.exr
-expect_stderr "neither on nor off" "--fallback maybe"
+expect_stderr "none of occluded, on and off" "--fallback maybe"
 expect_exit 1 "--coarse-below 0" -- "$ILLUM" render cornell --method linespace --coarse-below 0 -q -o bad.exr
 expect_exit 1 "--coarse-below 256" -- "$ILLUM" render cornell --method linespace --coarse-below 256 -q -o bad.exr
 expect_exit 1 "--coarse sometimes" -- "$ILLUM" render cornell --method linespace --coarse sometimes -q -o bad.exr

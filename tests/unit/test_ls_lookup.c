@@ -5,8 +5,11 @@
  *   direction, distances), for random points and directions, directions
  *   along an axis or in an axis plane, and points on voxel faces;
  * - il_ls_walk, the injection's voxel walk, reports exactly the crossings
- *   (voxel, shaft, direction, length) of the walk through that plain chain,
- *   for random segments (inside and outside the grid, finite and not);
+ *   (voxel, shaft, direction, chord) of the walk through that plain chain,
+ *   for random segments (inside and outside the grid, finite and not), and
+ *   a segment as entering a voxel exactly when it starts before the voxel
+ *   or on the face its line enters by (segments from random points of
+ *   voxel faces and of voxel interiors);
  * - the in-shaft occlusion test, which reads each shaft's candidate list
  *   from its 32-byte record (the first candidates inline, the rest in the
  *   voxel's array), agrees with a brute-force test of the ray against every
@@ -14,8 +17,8 @@
  *   two grids and N (short and long lists);
  * - the coarse level after an injection (Cornell box, grid 8, N 4 and 3):
  *   each coarse entry is the measure-weighted mean of the entries of its
- *   stored shafts that light crossed either way (an entry holds sum / (P M)
- *   whether or not it counts as filled; zero when nothing crossed), filled
+ *   stored shafts (an entry holds sum / (P M) whether or not it counts as
+ *   filled), filled
  *   when one of them got a deposit; and the wave's three-step
  *   lookup (probe, slot, read) gives what il_ls_lookup and
  *   il_ls_occluded give, bit for bit, coarse or fine, for random points on
@@ -110,23 +113,25 @@ static void check_find(const il_linespace *ls, il_pcg32 *r)
 /* Crossings of one segment, as il_ls_walk reports them. */
 typedef struct crossing {
     uint32_t voxel, shaft, dir;
-    float length;
+    float chord;
+    bool entered;
 } crossing;
 typedef struct crossings {
     crossing c[4096];
     uint32_t n;
 } crossings;
 
-static void record(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length)
+static void record(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float chord, bool entered)
 {
     crossings *cs = user;
     if (cs->n < 4096)
-        cs->c[cs->n++] = (crossing){voxel, shaft, dir, length};
+        cs->c[cs->n++] = (crossing){voxel, shaft, dir, chord, entered};
 }
 
 /* The walk as first written: every cell through il_ls_cell_of,
  * il_ls_cell_box, il_ls_locate and il_ls_shaft_index. */
-static void plain_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, crossings *out)
+static void plain_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float start_tol,
+                       crossings *out)
 {
     float t0 = 0.0f, t1 = t_end;
     for (int i = 0; i < 3; i++) {
@@ -161,7 +166,13 @@ static void plain_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end
         int32_t v = ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])];
         if (v >= 0) {
             uint32_t dir, shaft = il_ls_shaft_index(ls->n, fi, pi, fo, po, &dir);
-            record(out, (uint32_t)v, shaft, dir, t_next - t);
+            /* Entered: the cell's entry point is not behind o, or o lies
+             * on the entry face's plane (within the tolerance). */
+            int axis = (int)(fi / 2u);
+            float plane = v3_get(lo, axis) + ((fi & 1u) ? v3_get(ls->vsize, axis) : 0.0f);
+            bool entered = v3_dot(v3_sub(p, o), d) + tin >= -step_eps ||
+                           fabsf(v3_get(o, axis) - plane) <= 1e-4f * v3_max_comp(ls->vsize) + start_tol;
+            record(out, (uint32_t)v, shaft, dir, tout - tin, entered);
         }
         t = t_next;
     }
@@ -180,19 +191,67 @@ static void check_walk(const il_linespace *ls, il_pcg32 *r)
         il_vec3 d = random_dir(r);
         float t_end = i % 3u == 0 ? INFINITY : v3_length(size) * rnd(r);
         want.n = got.n = 0;
-        plain_walk(ls, o, d, t_end, &want);
-        il_ls_walk(ls, o, d, t_end, record, &got);
+        plain_walk(ls, o, d, t_end, 0.0f, &want);
+        il_ls_walk(ls, o, d, t_end, 0.0f, record, &got);
         total += want.n;
         bool same = want.n == got.n;
         for (uint32_t k = 0; same && k < want.n; k++)
             same = want.c[k].voxel == got.c[k].voxel && want.c[k].shaft == got.c[k].shaft &&
-                   want.c[k].dir == got.c[k].dir && want.c[k].length == got.c[k].length;
+                   want.c[k].dir == got.c[k].dir && want.c[k].chord == got.c[k].chord &&
+                   want.c[k].entered == got.c[k].entered;
         bad += !same;
     }
     printf("il_ls_walk: %llu crossings of 20000 segments, %u segments differ from the plain walk\n",
            (unsigned long long)total, bad);
     CHECK(total > 10000);
     CHECK(bad == 0);
+    /* Entering: a segment from a point of a voxel's face into the voxel
+     * (offset off the face by up to the tolerance) enters it, one from a
+     * point well inside does not; every later voxel is entered. */
+    uint32_t face_starts = 0, face_bad = 0, inside_bad = 0, later_bad = 0;
+    const float tol = 1e-3f * v3_max_comp(ls->vsize);
+    for (uint32_t i = 0; i < 20000; i++) {
+        uint32_t cc[3] = {il_pcg32_next(r) % ls->res[0], il_pcg32_next(r) % ls->res[1], il_pcg32_next(r) % ls->res[2]};
+        if (ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])] < 0)
+            continue;
+        il_vec3 lo;
+        il_ls_cell_box(ls, cc, &lo);
+        il_vec3 d = random_dir(r);
+        bool on_face = i % 2u == 0;
+        float f[3] = {0.1f + 0.8f * rnd(r), 0.1f + 0.8f * rnd(r), 0.1f + 0.8f * rnd(r)};
+        int axis = (int)(il_pcg32_next(r) % 3u);
+        if (on_face) { /* the face on the side d comes from, o just inside */
+            float di = v3_get(d, axis);
+            if (fabsf(di) < 0.05f)
+                continue;
+            float off = rnd(r) * tol / v3_get(ls->vsize, axis);
+            f[axis] = di > 0.0f ? off : 1.0f - off;
+            face_starts++;
+        }
+        il_vec3 o = v3(lo.x + ls->vsize.x * f[0], lo.y + ls->vsize.y * f[1], lo.z + ls->vsize.z * f[2]);
+        got.n = 0;
+        il_ls_walk(ls, o, d, INFINITY, tol, record, &got);
+        if (got.n == 0 || got.c[0].voxel != (uint32_t)ls->cell[cc[0] + (size_t)ls->res[0] * (cc[1] + (size_t)ls->res[1] * cc[2])])
+            continue; /* o's own voxel comes first */
+        /* The face at o is the entry face only if the line enters by it:
+         * a start in a face's corner region may enter by another face. */
+        uint32_t fi, pi, fo, po;
+        float tin, tout;
+        il_ls_locate(lo, ls->vsize, ls->n, o, d, &fi, &pi, &fo, &po, &tin, &tout);
+        if (on_face && (int)(fi / 2u) == axis)
+            face_bad += !got.c[0].entered;
+        else if (!on_face)
+            inside_bad += got.c[0].entered;
+        /* Later voxels; the walk may step through the last one again in
+         * slivers (where the grid's box ends a hair past it): not entered. */
+        for (uint32_t k = 1; k < got.n; k++)
+            later_bad += got.c[k].voxel != got.c[k - 1].voxel && !got.c[k].entered;
+    }
+    printf("il_ls_walk entering: %u starts on a face, %u not entered; %u starts inside entered; %u later voxels "
+           "not entered\n",
+           face_starts, face_bad, inside_bad, later_bad);
+    CHECK(face_starts > 3000);
+    CHECK(face_bad == 0 && inside_bad == 0 && later_bad == 0);
 }
 
 static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg32 *r)
@@ -229,10 +288,11 @@ static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg
         float tin, tout;
         if (!il_ls_find(&ls, v3_fma(x, w, eps), w, &voxel, &shaft, &dir, &tin, &tout))
             continue;
-        /* Brute force, up to the face short of eps (il_ls_occluded's range);
+        /* Brute force, up to the face short of eps (il_ls_occluded's range:
+         * tout is from x + eps w);
          * a hit within a margin of either end or of a triangle's edge is
          * left out, rounding may decide it. */
-        double tmax = (double)tout - eps, margin = 1e-4 * eps;
+        double tmax = (double)tout, margin = 1e-4 * eps;
         bool want = false, unsure = false;
         for (uint32_t mm = 0; mm < s->num_meshes; mm++)
             for (uint32_t tt = 0; tt < s->meshes[mm].num_triangles; tt++) {
@@ -274,6 +334,65 @@ static il_vec3 random_surface_point(const il_scene *s, il_pcg32 *r, uint32_t *me
     return v3_fma(v3_fma(g->p0, v3_sub(g->p1, g->p0), a), v3_sub(g->p2, g->p0), b);
 }
 
+typedef struct wave_counts {
+    uint32_t looked, found, from_coarse, occluded, occluded_empty, differ;
+} wave_counts;
+
+/* The wave's lookup (il_ls_probe_at, il_ls_probe_slot, il_ls_read_probe)
+ * against the plain one (il_ls_lookup, then il_ls_occluded where the test
+ * mode says) at random surface points and directions, for each of the
+ * three occlusion-test modes. */
+static wave_counts compare_wave_lookup(const il_linespace *ls, const il_scene *s, il_pcg32 *r)
+{
+    wave_counts c = {0};
+    for (uint32_t i = 0; i < 40000; i++) {
+        uint32_t m, t;
+        il_vec3 x = random_surface_point(s, r, &m, &t);
+        il_vec3 w = il_sample_uniform_sphere(v2(rnd(r), rnd(r)));
+        for (il_ls_test test = IL_LS_TEST_NONE; test <= IL_LS_TEST_ALL; test++) {
+            il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
+            bool coarse = false;
+            il_ls_lookup_status read = il_ls_lookup(ls, x, w, &L1, &coarse), want = read;
+            bool tested = test == IL_LS_TEST_ALL || (test == IL_LS_TEST_LIT && read == IL_LS_FOUND);
+            if (tested && il_ls_occluded(ls, s, x, w, m, t))
+                want = IL_LS_OCCLUDED;
+            il_ls_probe pr;
+            il_ls_probe_at(ls, x, w, &pr);
+            il_ls_probe_slot(ls, test, &pr);
+            il_ls_lookup_status got = il_ls_read_probe(ls, s, &pr, x, w, test, m, t, &L2, NULL);
+            bool same = got == want && (read != IL_LS_FOUND || (L1.x == L2.x && L1.y == L2.y && L1.z == L2.z &&
+                                                                 coarse == (pr.coarse != NULL)));
+            c.differ += !same;
+            c.looked++;
+            c.found += want == IL_LS_FOUND;
+            c.from_coarse += want == IL_LS_FOUND && coarse;
+            c.occluded += want == IL_LS_OCCLUDED;
+            c.occluded_empty += want == IL_LS_OCCLUDED && read == IL_LS_EMPTY;
+        }
+    }
+    return c;
+}
+
+/* Without a coarse level: every test mode reads as the plain lookup does,
+ * and IL_LS_TEST_ALL finds empty entries occluded too. */
+static void check_wave(const il_scene *s, uint32_t n, il_pcg32 *r)
+{
+    il_ls_settings set = {.grid = 8, .n = n, .inject_rays = 100000, .inject_depth = 3, .solid_angle = true};
+    il_linespace ls;
+    il_ls_inject_result ir;
+    if (il_ls_build(s, &set, 2, &ls, &g_err) != IL_OK || il_ls_inject(s, &set, 7, 2, &ls, &ir, &g_err) != IL_OK) {
+        CHECK(false);
+        return;
+    }
+    wave_counts c = compare_wave_lookup(&ls, s, r);
+    printf("wave lookups, N %u, no coarse level: %u lookups, %u found, %u occluded (%u of them empty), %u "
+           "differ between the wave's and the plain lookup\n",
+           n, c.looked, c.found, c.occluded, c.occluded_empty, c.differ);
+    CHECK(c.found > 0 && c.occluded > c.occluded_empty && c.occluded_empty > 0);
+    CHECK(c.differ == 0);
+    il_ls_free(&ls);
+}
+
 static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32 *r)
 {
     il_ls_settings set = {.grid = 8, .n = n, .inject_rays = 100000, .inject_depth = 3, .coarse = true,
@@ -296,10 +415,7 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
                 continue;
             double *c = sum + 7u * ls.coarse_of[sh], m = ls.measure[sh];
             const il_ls_rec *rec = &ls.recs[slot];
-            bool lit = false;
-            for (int dir = 0; dir < 2; dir++)
-                lit |= rec->rgb[dir][0] + rec->rgb[dir][1] + rec->rgb[dir][2] > 0.0f;
-            c[0] += lit ? m : 0.0;
+            c[0] += m;
             for (int dir = 0; dir < 2; dir++)
                 for (int k = 0; k < 3; k++)
                     c[1 + 3 * dir + k] += m * rec->rgb[dir][k];
@@ -318,41 +434,18 @@ static void check_coarse(const il_scene *s, uint32_t n, uint32_t below, il_pcg32
     }
     free(sum);
     /* The wave's lookup against the plain one. */
-    uint32_t looked = 0, found = 0, from_coarse = 0, occluded = 0, differ = 0;
-    for (uint32_t i = 0; i < 40000; i++) {
-        uint32_t m, t;
-        il_vec3 x = random_surface_point(s, r, &m, &t);
-        il_vec3 w = il_sample_uniform_sphere(v2(rnd(r), rnd(r)));
-        for (int occ = 0; occ < 2; occ++) {
-            il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
-            bool coarse = false;
-            il_ls_lookup_status want = il_ls_lookup(&ls, x, w, &L1, &coarse);
-            if (occ && want == IL_LS_FOUND && il_ls_occluded(&ls, s, x, w, m, t))
-                want = IL_LS_OCCLUDED;
-            il_ls_probe pr;
-            il_ls_probe_at(&ls, x, w, &pr);
-            il_ls_probe_slot(&ls, occ, &pr);
-            il_ls_lookup_status got = il_ls_read_probe(&ls, s, &pr, x, w, occ, m, t, &L2, NULL);
-            bool same = got == want && (want == IL_LS_EMPTY || (L1.x == L2.x && L1.y == L2.y && L1.z == L2.z)) &&
-                        (want == IL_LS_EMPTY || coarse == (pr.coarse != NULL));
-            differ += !same;
-            looked++;
-            found += want == IL_LS_FOUND;
-            from_coarse += want == IL_LS_FOUND && coarse;
-            occluded += want == IL_LS_OCCLUDED;
-        }
-    }
+    wave_counts c = compare_wave_lookup(&ls, s, r);
     printf("coarse level, N %u -> %u, fine below %u deposits: %u of %u coarse entries filled, %u values and "
            "%u flags differ from the fine entries'; %u lookups, %u found (%u coarse), %u occluded, %u "
            "differ between the wave's and the plain lookup\n",
-           n, ls.coarse_n, below, filled, ls.num_voxels * ls.num_coarse * 2u, bad_value, bad_filled, looked,
-           found, from_coarse, occluded, differ);
+           n, ls.coarse_n, below, filled, ls.num_voxels * ls.num_coarse * 2u, bad_value, bad_filled, c.looked,
+           c.found, c.from_coarse, c.occluded, c.differ);
     CHECK(filled > 0);
     CHECK(bad_value == 0 && bad_filled == 0);
-    CHECK(from_coarse > 0 && occluded > 0);
+    CHECK(c.from_coarse > 0 && c.occluded > 0);
     if (below == 1) /* 10^5 paths leave few entries with 32 deposits */
-        CHECK(found > from_coarse);
-    CHECK(differ == 0);
+        CHECK(c.found > c.from_coarse);
+    CHECK(c.differ == 0);
     il_ls_free(&ls);
 }
 
@@ -364,6 +457,8 @@ int main(void)
     il_pcg32 r = il_pcg32_seed(17, 3);
     check_occlusion(s, 8, 4, &r);
     check_occlusion(s, 3, 2, &r);
+    check_wave(s, 4, &r);
+    check_wave(s, 2, &r);
     check_coarse(s, 4, 1, &r);
     check_coarse(s, 4, 32, &r);
     check_coarse(s, 3, 32, &r);

@@ -1,21 +1,21 @@
 /* Linespace light injection against the path tracer on the built-in
  * (diffuse) Cornell box, both at max depth 8:
- * - the mean radiance over the pixels of each wall and block within 10%
- *   (the issue's criterion), with the default variant (occlusion test and
- *   fallback on) and 1M injected paths;
+ * - the mean radiance over the pixels of each wall and block within 8%
+ *   (the issue asks 10% for the walls), with the default variant
+ *   (occlusion test on, occluded entries trace on, empty ones read as no
+ *   light) and 1M injected paths; with empty entries tracing on too
+ *   (`--fallback on`) more lookups trace and the walls stay within 10%;
  * - the pure Linespace read (no occlusion test, no fallback: every camera
  *   path ends at its first diffuse hit) gets closer to the path tracer as
  *   the injected paths grow (RMS difference, 40k -> 1.2M paths; its
  *   per-mesh means are printed only: see below);
  * - the solid-angle weighting (each shaft normalised by its own measure)
  *   gives a smaller error than the thesis's uniform normalisation;
- * - the coarse level (--coarse on): more lookups find light, fewer fall
- *   back to tracing, and the walls stay within 10% (the blocks are printed:
- *   their coarse shafts are diluted by the blocks' insides, see
- *   docs/linespace.md);
+ * - the coarse level (--coarse on): more lookups find light, and every
+ *   wall and block stays within 10%;
  * - the final gather (one traced bounce before the read): every wall and
- *   block within 5%, the blocks' dilution averaged out (the sum of the
- *   per-mesh errors under half the default variant's);
+ *   block within 5%, the sum of the per-mesh errors under 3/4 of the
+ *   default variant's;
  * - the same seed gives the same image with 1 and 2 threads;
  * - the stats: grid, shafts at most 15 N^4 per voxel, memory, lookups. */
 #include <string.h>
@@ -108,8 +108,24 @@ int main(void)
     CHECK(ls->lookups > 0 && ls->lookup_hits > ls->lookups / 2);
     CHECK(ls->lookup_hits + ls->lookup_empty + ls->lookup_occluded == ls->lookups);
     CHECK(image_finite(&img));
-    CHECK(compare_mesh_means(s, &img, &ref, 0.10, 0.0, "linespace", "pt") >= 6);
+    CHECK(compare_mesh_means(s, &img, &ref, 0.08, 0.0, "linespace", "pt") >= 6);
     printf("default: rel. RMS difference %.4f\n", rel_rms(&img, &ref));
+
+    /* Empty entries trace on too: the same lookups, as many traced. */
+    il_linespace_desc on = {.inject_rays = 1000000, .fallback_empty = true};
+    il_render_stats ost;
+    il_image oimg = render_ls(s, &on, 2, &ost);
+    printf("fallback on: lookups %llu (found %llu, empty %llu, occluded %llu), rel. RMS difference %.4f\n",
+           (unsigned long long)ost.linespace.lookups, (unsigned long long)ost.linespace.lookup_hits,
+           (unsigned long long)ost.linespace.lookup_empty, (unsigned long long)ost.linespace.lookup_occluded,
+           rel_rms(&oimg, &ref));
+    CHECK(image_finite(&oimg));
+    CHECK(ost.linespace.lookup_empty > 0 && ost.linespace.lookups > ls->lookups);
+    /* The walls within 10%; the blocks printed: a traced estimate in place
+     * of an empty entry's zero biases upwards (docs/linespace.md). */
+    CHECK(walls_within(s, &oimg, &ref, 0.10) == 5);
+    compare_mesh_means(s, &oimg, &ref, 1.0, 0.0, "fallback-on", "pt");
+    il_image_free(&oimg);
 
     /* The coarse level. */
     il_linespace_desc co = {.inject_rays = 1000000, .coarse = true};
@@ -128,7 +144,7 @@ int main(void)
     CHECK(cl->memory_bytes > ls->memory_bytes);
     CHECK(image_finite(&cimg));
     CHECK(walls_within(s, &cimg, &ref, 0.10) == 5);
-    compare_mesh_means(s, &cimg, &ref, 1.0, 0.0, "coarse", "pt");
+    CHECK(compare_mesh_means(s, &cimg, &ref, 0.10, 0.0, "coarse", "pt") >= 6);
     il_image_free(&cimg);
 
     /* The final gather. */
@@ -141,7 +157,7 @@ int main(void)
     CHECK(compare_mesh_means(s, &fimg, &ref, 0.05, 0.0, "gather", "pt") >= 6);
     double m_def = mesh_error(s, &img, &ref), m_fg = mesh_error(s, &fimg, &ref);
     printf("sum of per-mesh errors: default %.4f, final gather %.4f\n", m_def, m_fg);
-    CHECK(m_fg < 0.5 * m_def);
+    CHECK(m_fg < 0.75 * m_def);
     il_image_free(&fimg);
 
     /* Determinism across thread counts. */
@@ -159,9 +175,9 @@ int main(void)
     double e_few = rel_rms(&few, &ref), e_many = rel_rms(&many, &ref);
     printf("pure read: rel. RMS 40k paths %.4f, 1.2M paths %.4f\n", e_few, e_many);
     CHECK(e_many < 0.7 * e_few);
-    /* Printed, not checked per mesh: a block's voxels lie half inside it,
-     * where no light runs, which dilutes what its faces read (20-25% low
-     * for the tall block; docs/linespace.md, "Limits"). */
+    /* Printed, not checked per mesh: without the occlusion test a point
+     * reads the light entering its voxel even where a nearer surface lies
+     * between (the tall block about 11% low). */
     compare_mesh_means(s, &many, &ref, 1.0, 0.0, "ls-pure", "pt");
 
     /* The solid-angle weighting against the uniform normalisation. */

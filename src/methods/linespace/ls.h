@@ -33,7 +33,9 @@ typedef struct il_ls_settings {
     uint64_t inject_rays;
     uint32_t inject_depth;  /* bounces of a light path (segments after the first hit) */
     float blur;             /* fraction of the smallest voxel side */
-    bool occlusion_test, fallback, solid_angle;
+    bool occlusion_test, solid_angle;
+    bool fallback;          /* an occluded entry traces on */
+    bool fallback_empty;    /* so does an empty one (else it reads as no light) */
     bool coarse;            /* build a coarse level, read where an entry has */
     uint32_t coarse_below;  /* fewer deposits than this (they count as empty) */
     bool trace_first_bounce; /* read only after one non-delta bounce was traced */
@@ -162,8 +164,8 @@ typedef struct il_ls_tri {
  * with N_c = N / (N's smallest prime factor) patches per face side, so each
  * patch lies inside one coarse patch and each shaft inside one coarse shaft
  * (the same pair of faces).  A coarse entry holds the radiance of all the
- * light the injection left in its stored shafts, over the summed measure
- * of those that light crossed either way: the mean over more lines, read
+ * light the injection left in its stored shafts, over their summed
+ * measure: the mean over more lines, read
  * where a shaft's own entry got too few deposits, so that fewer lookups
  * fall back to tracing. */
 typedef struct il_ls_coarse {
@@ -259,13 +261,23 @@ bool il_ls_find(const il_linespace *ls, il_vec3 p, il_vec3 d, uint32_t *voxel, u
 
 /* What il_ls_walk reports for each voxel with triangles the segment
  * crosses: the voxel, the shaft and direction its line runs through there,
- * and the length of the segment inside the voxel. */
-typedef void (*il_ls_visit)(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length);
+ * the line's chord through the voxel (from face to face, wherever the
+ * segment starts or ends), and whether the segment entered the voxel
+ * through its boundary: it starts before the voxel, or on (within `tol`
+ * of) the face its line enters by, as light leaving a wall that lies in
+ * that face does.  A segment starting inside carries light that arose in
+ * the voxel (docs/linespace.md, "Injection"). */
+typedef void (*il_ls_visit)(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float chord,
+                            bool entered);
 /* Walks the segment o + t d, t in [0, t_end] (d unit; t_end may be
  * infinite), clipped to the grid, voxel by voxel in order, and calls
  * visit for each voxel with triangles (empty ones are crossed silently).
- * A cell's exit point decides the next cell, nudged 1e-5 voxel along d. */
-void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_ls_visit visit, void *user);
+ * A cell's exit point decides the next cell, nudged 1e-5 voxel along d.
+ * `start_tol`: how far o may lie off the surface it leaves (the ray
+ * offset); a start that close to the entry face, or 10^-4 voxel closer
+ * (the occlusion test's margin), counts as entering. */
+void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float start_tol,
+                il_ls_visit visit, void *user);
 
 typedef struct il_ls_inject_result {
     uint64_t deposits;
@@ -273,7 +285,8 @@ typedef struct il_ls_inject_result {
 } il_ls_inject_result;
 
 /* Traces s->inject_rays light paths (keyed by seed and path index) and
- * finishes the entries: radiance = sum(flux x length) / (paths x measure). */
+ * finishes the entries: radiance = sum(flux x chord) / (paths x measure)
+ * over the segments that entered each voxel (il_ls_visit). */
 il_status il_ls_inject(const il_scene *scene, const il_ls_settings *s, uint64_t seed, int threads,
                        il_linespace *ls, il_ls_inject_result *out, il_error *err);
 
@@ -284,9 +297,17 @@ typedef enum il_ls_lookup_status {
     IL_LS_EMPTY,            /* outside the grid, no Linespace, shaft not stored or no deposit
                                (with a coarse level: too few, and none in the coarse entry) */
     IL_LS_OCCLUDED,         /* the in-shaft occlusion test found geometry first */
-    IL_LS_TRACE             /* il_ls_read_probe: found, unless the occlusion ray it
+    IL_LS_TRACE,            /* il_ls_read_probe: found, unless the occlusion ray it
                                left to the caller hits something (then occluded) */
+    IL_LS_TRACE_EMPTY       /* the same for an empty entry (IL_LS_TEST_ALL): empty
+                               unless that ray hits something */
 } il_ls_lookup_status;
+
+/* Which entries the in-shaft occlusion test runs on: none, those holding
+ * light (an empty one gives nothing either way), or every stored one (the
+ * default fallback: an empty entry reads as no light unless it is
+ * occluded, when it traces on as an occluded lit one does). */
+typedef enum il_ls_test { IL_LS_TEST_NONE = 0, IL_LS_TEST_LIT, IL_LS_TEST_ALL } il_ls_test;
 
 /* The radiance arriving at p from direction w (unit, pointing away from p)
  * as the Linespace holds it: the shaft and direction of the line through p
@@ -301,9 +322,8 @@ il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, i
  * (self_mesh, self_prim). */
 bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
                     uint32_t self_mesh, uint32_t self_prim);
-/* il_ls_lookup at x and, when occlusion_test, il_ls_occluded from x, with
- * one walk (IL_LS_EMPTY first: an empty entry is not tested for occlusion),
- * in three steps, each done for a whole wave of lookups before the next
+/* il_ls_lookup at x and, as `test` says, il_ls_occluded from x, with
+ * one walk, in three steps, each done for a whole wave of lookups before the next
  * (the sampling pass): il_ls_probe_at finds the voxel,
  * shaft and direction of (x, w) and starts fetching the shaft's bit word;
  * il_ls_probe_slot finds its slot, when its entry holds deposits (or, when
@@ -314,7 +334,8 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
  * Linespace's large arrays, which a wave's probes overlap.  Given `ray`,
  * il_ls_read_probe leaves an occlusion test that must trace the scene (a
  * shaft without a candidate list) to the caller, who traces it with the
- * wave's others: it returns IL_LS_TRACE with *ray and *L set. */
+ * wave's others: it returns IL_LS_TRACE (IL_LS_TRACE_EMPTY for an empty
+ * entry) with *ray and *L set. */
 typedef struct il_ls_probe {
     bool found;                  /* a voxel and shaft for the line */
     uint32_t voxel, shaft, dir;
@@ -324,9 +345,9 @@ typedef struct il_ls_probe {
     float t_in;
 } il_ls_probe;
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr);
-void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *pr);
+void il_ls_probe_slot(const il_linespace *ls, il_ls_test test, il_ls_probe *pr);
 il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
-                                     il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
+                                     il_vec3 x, il_vec3 w, il_ls_test test, uint32_t self_mesh,
                                      uint32_t self_prim, il_vec3 *L, il_ray *ray);
 
 #endif

@@ -7,23 +7,33 @@
  * The thesis adds the irradiance E = I cos(theta) / d^2 that the segment's
  * start receives and reads E / count back.  That is exact for a point light
  * and one bounce only, and has no form for an area light.  Here a segment
- * carrying flux Phi adds Phi * l to the entry of the shaft and direction its
- * line runs through in each voxel, l its length inside the voxel: the
- * track-length estimator (Spanier & Gelbard 1969; Jensen & Christensen's
- * volume photon maps use its collision form).  After P paths,
+ * carrying flux Phi that enters a voxel through its boundary adds Phi * c
+ * to the entry of the shaft and direction its line runs through there, c
+ * the line's chord through the voxel (face to face, wherever the segment
+ * ends).  The flux entering through dA within dw is L cos dA dw = L dG
+ * (the line measure, Santalo), so after P paths
  *
- *   L_shaft = sum(Phi l) / (P M_shaft)      [W m / (m^3 sr) = W m^-2 sr^-1]
+ *   L_shaft = sum(Phi c) / (P M_shaft)      [W m / (m^3 sr) = W m^-2 sr^-1]
  *
- * is an unbiased estimate of the mean radiance over the (point, direction)
- * pairs of the voxel whose line lies in the shaft, M_shaft their measure
- * (il_ls_shaft_measures).  For a point light the expected flux a first
- * bounce at x sends into dw is rho/pi E(x) cos dA dw with E = I cos/d^2, the
- * thesis's term; for an area light E(x) = int Le cos cos' / r^2 dA' comes
- * out of the same sampling (docs/linespace.md, "Injection").
+ * with M_shaft = int c dG (il_ls_shaft_measures) is an unbiased estimate of
+ * the radiance entering the voxel along the shaft's lines, averaged over
+ * the (point, direction) pairs of the voxel whose line lies in the shaft:
+ * what a point x inside sees along such a line when nothing lies between
+ * x and the entry face, which is what the sampling pass's occlusion test
+ * checks.  Light leaving a surface inside the voxel is not deposited
+ * there: a point that sees that surface is occluded and traces on.  A
+ * track length (Phi times the segment's length inside the voxel, Spanier
+ * & Gelbard 1969) would estimate the mean over every point of the voxel,
+ * inside solids too, where no light runs, and read a block's faces up to
+ * 24% dark (docs/linespace.md, "Injection").  For a point light the
+ * expected flux a first bounce at x sends into dw is rho/pi E(x) cos dA dw
+ * with E = I cos/d^2, the thesis's term; for an area light E(x) = int Le
+ * cos cos' / r^2 dA' comes out of the same sampling.
  *
  * Deterministic for a seed: each path's random numbers are keyed by its
  * index, chunks of paths are traced in parallel into their own deposit
  * lists and added in chunk order, whatever the thread count. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -78,10 +88,11 @@ typedef struct deposit_ctx {
     il_vec3 power;
 } deposit_ctx;
 
-static void deposit_visit(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float length)
+static void deposit_visit(void *user, uint32_t voxel, uint32_t shaft, uint32_t dir, float chord, bool entered)
 {
     deposit_ctx *dc = user;
-    push(dc->c, (uint64_t)voxel << 32 | (2u * shaft + dir), v3_scale(dc->power, length));
+    if (entered)
+        push(dc->c, (uint64_t)voxel << 32 | (2u * shaft + dir), v3_scale(dc->power, chord));
 }
 
 /* The chunk's deposits' slots, looked up after its paths are traced: the
@@ -126,8 +137,12 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
          * (straight from the light) is direct light, which the sampling
          * pass takes by shadow rays. */
         if (bounces > 0) {
+            /* The start's distance off its surface: at most twice
+             * il_offset_origin's offset. */
+            float mag = il_maxf(fabsf(ray.org.x), il_maxf(fabsf(ray.org.y), fabsf(ray.org.z)));
+            float start_tol = 2.0f * (il_trace_epsilon(tr) + mag * 4.0f * FLT_EPSILON);
             deposit_ctx dc = {c, power};
-            il_ls_walk(ls, ray.org, ray.dir, found ? hit.t : INFINITY, deposit_visit, &dc);
+            il_ls_walk(ls, ray.org, ray.dir, found ? hit.t : INFINITY, start_tol, deposit_visit, &dc);
         }
         if (!found || bounces >= depth)
             break;
@@ -143,10 +158,8 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
 }
 
 /* A coarse shaft's sums over the stored shafts it holds (docs/linespace.md,
- * "Coarse level"): radiance = sum(Phi l) / (P sum M), the track-length
- * estimate over all their lines together, where the sum of M leaves out
- * the shafts that no light crossed either way: those lie (mostly) inside a
- * solid, where no light runs, and would dilute the rest. */
+ * "Coarse level"): radiance = sum(Phi c) / (P sum M), the same estimate
+ * as a fine entry's over all their lines together. */
 typedef struct coarse_sum {
     double measure;
     double phi[2][3];
@@ -157,8 +170,7 @@ typedef struct coarse_sum {
  * (acc[3 dir + c]) and deposit counts. */
 static void coarse_add(coarse_sum *c, double meas, const double *acc, const uint8_t *filled)
 {
-    if (filled[0] || filled[1])
-        c->measure += meas;
+    c->measure += meas;
     for (int dir = 0; dir < 2; dir++) {
         for (int k = 0; k < 3; k++)
             c->phi[dir][k] += acc[3 * dir + k];
@@ -277,13 +289,13 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         free(filled);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory tracing light paths");
     }
-    /* Radiance = sum(Phi l) / (P M).  Without the solid-angle correction
+    /* Radiance = sum(Phi c) / (P M).  Without the solid-angle correction
      * every shaft is taken to be the mean size 2 pi V / (15 N^4), as a
      * reading that ignores how much of the sphere a shaft covers does. */
     double volume = (double)ls->vsize.x * ls->vsize.y * ls->vsize.z;
     double mean_measure = 2.0 * IL_PI * volume / (double)ls->num_shafts;
-    /* Per coarse shaft of the voxel at hand: its lit stored shafts' summed
-     * measure, then per direction the sums of Phi l and whether any got a
+    /* Per coarse shaft of the voxel at hand: its stored shafts' summed
+     * measure, then per direction the sums of Phi c and whether any got a
      * deposit. */
     coarse_sum *cs = ls->coarse ? malloc(ls->num_coarse * sizeof(coarse_sum)) : NULL;
     if (ls->coarse && !cs) {

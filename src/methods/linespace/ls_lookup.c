@@ -185,9 +185,10 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
     int64_t slot = find(ls, v3_fma(org, w, eps), w, &dir, &t_in, &t_out, &voxel);
     if (slot < 0)
         return false;       /* no geometry in the shaft */
-    /* Up to the voxel's face, short of it: a wall lying in the face is
-     * where the shaft's light comes from, not an occluder. */
-    return shaft_blocks(ls, scene, &ls->recs[slot], voxel, org, w, eps, t_out - eps, self_mesh, self_prim);
+    /* Up to the voxel's face, short of it by eps (t_out is from org + eps
+     * w): a wall lying in the face is where the shaft's light comes from,
+     * not an occluder.  The same range as il_ls_read_probe's. */
+    return shaft_blocks(ls, scene, &ls->recs[slot], voxel, org, w, eps, t_out, self_mesh, self_prim);
 }
 
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr)
@@ -204,7 +205,7 @@ void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *p
         __builtin_prefetch(&ls->words[(size_t)pr->voxel * ls->mask_words + pr->shaft / 64u]);
 }
 
-void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *pr)
+void il_ls_probe_slot(const il_linespace *ls, il_ls_test test, il_ls_probe *pr)
 {
     if (!pr->found)
         return;
@@ -213,13 +214,14 @@ void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *
     int64_t slot = (word->mask & bit) ? (int64_t)(word->first_slot + il_ls_popcount(word->mask & (bit - 1u))) : -1;
     if (!(word->filled[pr->dir] & bit)) {
         /* An empty entry: without a coarse level it reads as nothing (its
-         * record is not needed, nor fetched); with one, the coarse entry
-         * is read instead, and the record only for its candidates. */
+         * record is needed only for the candidates of IL_LS_TEST_ALL);
+         * with one, the coarse entry is read instead, and the record only
+         * for its candidates. */
         pr->coarse = coarse_of(ls, pr->voxel, pr->shaft, pr->dir);
-        if (!pr->coarse)
-            return;
-        __builtin_prefetch(pr->coarse);
-        if (!occlusion_test || slot < 0)
+        if (pr->coarse)
+            __builtin_prefetch(pr->coarse);
+        bool tested = test == IL_LS_TEST_ALL || (test == IL_LS_TEST_LIT && pr->coarse);
+        if (!tested || slot < 0)
             return;
     }
     pr->slot = slot;
@@ -227,33 +229,33 @@ void il_ls_probe_slot(const il_linespace *ls, bool occlusion_test, il_ls_probe *
 }
 
 il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *scene, const il_ls_probe *pr,
-                                     il_vec3 x, il_vec3 w, bool occlusion_test, uint32_t self_mesh,
+                                     il_vec3 x, il_vec3 w, il_ls_test test, uint32_t self_mesh,
                                      uint32_t self_prim, il_vec3 *L, il_ray *ray)
 {
+    /* The entry (or the coarse one read instead) first; the occlusion test
+     * on the shaft's own candidates (none when it is not stored: nothing
+     * in it). */
     const il_ls_rec *r = pr->slot >= 0 ? &ls->recs[pr->slot] : NULL;
+    bool lit;
     if (pr->coarse) {
-        /* The coarse entry, and the occlusion test on the shaft's own
-         * candidates (none when it is not stored: nothing in it). */
-        const il_ls_coarse *c = pr->coarse;
-        if (!c->filled)
-            return IL_LS_EMPTY;
-        *L = v3(c->rgb[0], c->rgb[1], c->rgb[2]);
-        if (!r)
-            return IL_LS_FOUND;
+        lit = pr->coarse->filled;
+        if (lit)
+            *L = v3(pr->coarse->rgb[0], pr->coarse->rgb[1], pr->coarse->rgb[2]);
     } else {
-        /* The entry first, the occlusion test only for an entry holding
-         * light (an empty entry gives nothing either way). */
-        if (!r || !(r->info & IL_LS_REC_FILLED(pr->dir)))
-            return IL_LS_EMPTY;
-        *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
+        lit = r && (r->info & IL_LS_REC_FILLED(pr->dir));
+        if (lit)
+            *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
     }
+    il_ls_lookup_status open = lit ? IL_LS_FOUND : IL_LS_EMPTY;
+    if (test == IL_LS_TEST_NONE || !r || (!lit && test != IL_LS_TEST_ALL))
+        return open;
     float eps = 1e-4f * v3_max_comp(ls->vsize), tmax = -pr->t_in;
-    if (occlusion_test && ray && (r->info & IL_LS_REC_OVERFLOW) && tmax > eps) {
+    if (ray && (r->info & IL_LS_REC_OVERFLOW) && tmax > eps) {
         /* shaft_blocks's ray, for the caller to trace. */
         *ray = (il_ray){.org = x, .tmin = eps, .dir = w, .tmax = tmax};
-        return IL_LS_TRACE;
+        return lit ? IL_LS_TRACE : IL_LS_TRACE_EMPTY;
     }
-    if (occlusion_test && shaft_blocks(ls, scene, r, pr->voxel, x, w, eps, tmax, self_mesh, self_prim))
+    if (shaft_blocks(ls, scene, r, pr->voxel, x, w, eps, tmax, self_mesh, self_prim))
         return IL_LS_OCCLUDED;
-    return IL_LS_FOUND;
+    return open;
 }

@@ -48,6 +48,7 @@ typedef struct ls_method {
     const il_scene *scene;
     const il_linespace *ls;
     il_ls_settings set;
+    il_ls_test test;               /* which entries the occlusion test runs on */
     float blur_radius;             /* world units */
     bool prefetch;                 /* il_wave_wants_prefetch */
     _Atomic uint64_t lookups, hits, empty, occluded, coarse;
@@ -143,7 +144,7 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
         cnt->occluded++;
     else
         cnt->empty++;
-    if (!m->set.fallback)
+    if (!m->set.fallback || (r == IL_LS_EMPTY && !m->set.fallback_empty))
         return LS_STOP;
     p->beta = p->next;
     p->specular = false;
@@ -232,8 +233,9 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             il_vec3 Li = v3s(0.0f);
             bool coarse;
             il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li, &coarse);
-            /* The occlusion test only where there is light to block. */
-            if (r == IL_LS_FOUND && m->set.occlusion_test &&
+            /* The occlusion test where m->test says (il_ls_read_probe). */
+            bool tested = m->test == IL_LS_TEST_ALL || (m->test == IL_LS_TEST_LIT && r == IL_LS_FOUND);
+            if (tested &&
                 il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
                 r = IL_LS_OCCLUDED;
             return path_after_lookup(m, p, r, Li, coarse, cnt);
@@ -364,21 +366,20 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         /* The lookups in three sweeps (shafts located, slots found, read),
          * each starting the next one's memory fetches, so that the cache
          * misses of the wave's lookups overlap. */
-        bool occlusion_test = m->set.occlusion_test;
         for (uint32_t k = 0; k < num_looking; k++) {
             const ls_path *p = &w->path[w->looking[k]];
             il_ls_probe_at(m->ls, p->x, p->wi, &w->probe[k]);
         }
         for (uint32_t k = 0; k < num_looking; k++)
-            il_ls_probe_slot(m->ls, occlusion_test, &w->probe[k]);
+            il_ls_probe_slot(m->ls, m->test, &w->probe[k]);
         uint32_t num_tracing = 0;
         for (uint32_t k = 0; k < num_looking; k++) {
             const ls_path *p = &w->path[w->looking[k]];
             w->Li[k] = v3s(0.0f);
-            w->status[k] = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, occlusion_test,
+            w->status[k] = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, m->test,
                                             p->self_mesh, p->self_prim, &w->Li[k],
                                             &w->occ_rays[num_tracing]);
-            if (w->status[k] == IL_LS_TRACE)
+            if (w->status[k] == IL_LS_TRACE || w->status[k] == IL_LS_TRACE_EMPTY)
                 w->tracing[num_tracing++] = k;
         }
         /* The occlusion tests of shafts without candidate lists, as one
@@ -386,7 +387,9 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         if (num_tracing > 0) {
             il_trace_occluded_n(tr, w->occ_rays, w->occ_hit, num_tracing);
             for (uint32_t t = 0; t < num_tracing; t++)
-                w->status[w->tracing[t]] = w->occ_hit[t] ? IL_LS_OCCLUDED : IL_LS_FOUND;
+                w->status[w->tracing[t]] = w->occ_hit[t]                                 ? IL_LS_OCCLUDED
+                                           : w->status[w->tracing[t]] == IL_LS_TRACE ? IL_LS_FOUND
+                                                                                     : IL_LS_EMPTY;
         }
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
@@ -479,6 +482,11 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     m->ls = &ls;
     m->set = set;
     m->prefetch = il_wave_wants_prefetch(scene);
+    /* An empty entry is tested too when an occluded one traces on but an
+     * empty one does not: what x sees there is not the shaft's light. */
+    m->test = !set.occlusion_test                      ? IL_LS_TEST_NONE
+              : set.fallback && !set.fallback_empty ? IL_LS_TEST_ALL
+                                                    : IL_LS_TEST_LIT;
     m->blur_radius = set.blur * il_minf(ls.vsize.x, il_minf(ls.vsize.y, ls.vsize.z));
     il_camera_pass_result r = {0};
     s = il_camera_pass_tiles(scene, film, desc, ls_tile, m, sizeof(ls_wave), &r, err);

@@ -48,6 +48,7 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
     out->blur = d->blur;
     out->occlusion_test = !d->no_occlusion_test;
     out->fallback = !d->no_fallback;
+    out->fallback_empty = out->fallback && d->fallback_empty;
     out->solid_angle = !d->no_solid_angle;
     out->coarse = d->coarse;
     out->coarse_below = d->coarse_below ? d->coarse_below : 32u;

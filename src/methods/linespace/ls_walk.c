@@ -27,7 +27,26 @@ static inline float cell_exit(il_vec3 lo, il_vec3 size, il_vec3 p, il_vec3 d)
     return tf;
 }
 
-void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_ls_visit visit, void *user)
+/* Whether a segment that starts at o, inside the cell holding p, entered
+ * the cell through its boundary: o within tol of the face by which the
+ * line through p along d enters the cell. */
+static bool starts_on_entry_face(const il_linespace *ls, il_vec3 o, il_vec3 p, il_vec3 d, float tol)
+{
+    uint32_t cc[3], fi, pi, fo, po;
+    float tin, tout;
+    il_vec3 lo;
+    if (!il_ls_cell_of(ls, p, cc))
+        return false;
+    il_ls_cell_box(ls, cc, &lo);
+    if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout))
+        return false;
+    int axis = (int)(fi / 2u);
+    float plane = v3_get(lo, axis) + ((fi & 1u) ? v3_get(ls->vsize, axis) : 0.0f);
+    return fabsf(v3_get(o, axis) - plane) <= tol;
+}
+
+void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float start_tol,
+                il_ls_visit visit, void *user)
 {
     /* Clip to the grid box (slab method). */
     float t0 = 0.0f, t1 = t_end;
@@ -51,6 +70,7 @@ void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_ls
     if (!(t1 > t0))
         return;
     const float step_eps = 1e-5f * v3_max_comp(ls->vsize);
+    const float face_tol = 1e-4f * v3_max_comp(ls->vsize) + start_tol;
     float t = t0;
     for (int guard = 0; t < t1 && guard < 100000; guard++) {
         /* The cell the segment is in just after t. */
@@ -69,8 +89,13 @@ void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, il_ls
         float t_next = il_minf(t1, v3_dot(v3_sub(p, o), d) + tout);
         if (!(t_next > t))
             t_next = t + step_eps;
-        if (located)
-            visit(user, voxel, shaft, dir, t_next - t);
+        if (located) {
+            /* Where the line enters the cell, on the segment's parameter:
+             * past its start for every cell but (mostly) the first. */
+            float t_cell = v3_dot(v3_sub(p, o), d) + tin;
+            bool entered = t_cell >= -step_eps || starts_on_entry_face(ls, o, p, d, face_tol);
+            visit(user, voxel, shaft, dir, tout - tin, entered);
+        }
         t = t_next;
     }
 }
