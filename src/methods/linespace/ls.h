@@ -165,9 +165,8 @@ typedef struct il_ls_tri {
  * patch lies inside one coarse patch and each shaft inside one coarse shaft
  * (the same pair of faces).  A coarse entry holds the radiance of all the
  * light the injection left in its stored shafts, over their summed
- * measure: the mean over more lines, read
- * where a shaft's own entry got too few deposits, so that fewer lookups
- * fall back to tracing. */
+ * measure: the mean over more lines, read where a shaft's own entry got
+ * too few deposits, so that fewer lookups read an empty or noisy entry. */
 typedef struct il_ls_coarse {
     float rgb[3];
     uint32_t filled;               /* 1 when some deposit reached it */
