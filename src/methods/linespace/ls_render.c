@@ -15,10 +15,12 @@
  * Variants: the lookup point jittered on a disk of radius `blur` about x in
  * the tangent plane (the thesis's blur); the in-shaft occlusion test (the
  * shaft's candidate triangles between x and the voxel's face: then x does
- * not see what the shaft holds); the fallback (an empty or occluded shaft
- * traces on, as the path tracer, instead of giving nothing).  Phong lobes
- * sharper than n2 always trace on, below n1 read the Linespace; between,
- * the Linespace is read with probability (n2 - e) / (n2 - n1), which blends
+ * not see what the shaft holds); the fallback (an occluded shaft traces
+ * on, as the path tracer, instead of giving nothing; with fallback_empty
+ * an empty entry does too, else it reads as no light, the estimator's own
+ * value).  Phong lobes sharper than n2 always trace on, below n1 read the
+ * Linespace; between, the Linespace is read with probability
+ * (n2 - e) / (n2 - n1), which blends
  * the two estimates linearly.  The final gather (Jensen 2001, 9.3.2,
  * as the photon mapper's) traces the first non-delta bounce on and reads
  * at the next non-delta hit, where the field's per-voxel error is averaged
