@@ -638,8 +638,10 @@ typedef struct il_linespace_stats {
     uint64_t memory_bytes;     /* the whole structure */
     uint64_t inject_rays;      /* light paths emitted */
     uint64_t injected_segments; /* (segment, voxel) deposits */
-    uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded; /* occluded: the entry held
-                                  light but the in-shaft test found geometry first */
+    uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded; /* occluded: the in-shaft
+                                  test found geometry first (tested: every stored entry
+                                  by default, those holding light with fallback_empty
+                                  or no_fallback) */
     uint64_t lookup_coarse;    /* of lookup_hits, those read from the coarse level */
     double seconds_build;      /* grid, shafts and candidate lists */
     double seconds_inject;
