@@ -18,11 +18,12 @@
  * - the coarse level after an injection (Cornell box, grid 8, N 4 and 3):
  *   each coarse entry is the measure-weighted mean of the entries of its
  *   stored shafts (an entry holds sum / (P M) whether or not it counts as
- *   filled), filled
- *   when one of them got a deposit; and the wave's three-step
- *   lookup (probe, slot, read) gives what il_ls_lookup and
- *   il_ls_occluded give, bit for bit, coarse or fine, for random points on
- *   the scene's triangles with the fine threshold at 1 and at 32. */
+ *   filled), filled when one of them got a deposit;
+ * - the wave's three-step lookup (probe, slot, read) gives what
+ *   il_ls_lookup and il_ls_occluded give, bit for bit, coarse or fine, in
+ *   each occlusion-test mode (none, entries holding light, every stored
+ *   entry), for random points on the scene's triangles, without a coarse
+ *   level (N 4 and 2) and with one (the fine threshold at 1 and 32). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
