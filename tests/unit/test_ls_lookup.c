@@ -354,8 +354,7 @@ static wave_counts compare_wave_lookup(const il_linespace *ls, const il_scene *s
             il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
             bool coarse = false;
             il_ls_lookup_status read = il_ls_lookup(ls, x, w, &L1, &coarse), want = read;
-            bool tested = test == IL_LS_TEST_ALL || (test == IL_LS_TEST_LIT && read == IL_LS_FOUND);
-            if (tested && il_ls_occluded(ls, s, x, w, m, t))
+            if (il_ls_tested(test, read == IL_LS_FOUND) && il_ls_occluded(ls, s, x, w, m, t))
                 want = IL_LS_OCCLUDED;
             il_ls_probe pr;
             il_ls_probe_at(ls, x, w, &pr);

@@ -307,6 +307,12 @@ typedef enum il_ls_lookup_status {
  * default fallback: an empty entry reads as no light unless it is
  * occluded, when it traces on as an occluded lit one does). */
 typedef enum il_ls_test { IL_LS_TEST_NONE = 0, IL_LS_TEST_LIT, IL_LS_TEST_ALL } il_ls_test;
+/* Whether `test` runs the occlusion test on an entry that holds light
+ * (lit) or not. */
+static inline bool il_ls_tested(il_ls_test test, bool lit)
+{
+    return test == IL_LS_TEST_ALL || (test == IL_LS_TEST_LIT && lit);
+}
 
 /* The radiance arriving at p from direction w (unit, pointing away from p)
  * as the Linespace holds it: the shaft and direction of the line through p

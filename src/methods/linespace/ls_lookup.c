@@ -220,8 +220,8 @@ void il_ls_probe_slot(const il_linespace *ls, il_ls_test test, il_ls_probe *pr)
         pr->coarse = coarse_of(ls, pr->voxel, pr->shaft, pr->dir);
         if (pr->coarse)
             __builtin_prefetch(pr->coarse);
-        bool tested = test == IL_LS_TEST_ALL || (test == IL_LS_TEST_LIT && pr->coarse);
-        if (!tested || slot < 0)
+        /* (A coarse entry may hold light: its record may be tested.) */
+        if (!il_ls_tested(test, pr->coarse != NULL) || slot < 0)
             return;
     }
     pr->slot = slot;
@@ -247,7 +247,7 @@ il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *sce
             *L = v3(r->rgb[pr->dir][0], r->rgb[pr->dir][1], r->rgb[pr->dir][2]);
     }
     il_ls_lookup_status open = lit ? IL_LS_FOUND : IL_LS_EMPTY;
-    if (test == IL_LS_TEST_NONE || !r || (!lit && test != IL_LS_TEST_ALL))
+    if (!r || !il_ls_tested(test, lit))
         return open;
     float eps = 1e-4f * v3_max_comp(ls->vsize), tmax = -pr->t_in;
     if (ray && (r->info & IL_LS_REC_OVERFLOW) && tmax > eps) {

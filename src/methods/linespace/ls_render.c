@@ -236,8 +236,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             bool coarse;
             il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li, &coarse);
             /* The occlusion test where m->test says (il_ls_read_probe). */
-            bool tested = m->test == IL_LS_TEST_ALL || (m->test == IL_LS_TEST_LIT && r == IL_LS_FOUND);
-            if (tested &&
+            if (il_ls_tested(m->test, r == IL_LS_FOUND) &&
                 il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
                 r = IL_LS_OCCLUDED;
             return path_after_lookup(m, p, r, Li, coarse, cnt);
