@@ -27,22 +27,17 @@ static inline float cell_exit(il_vec3 lo, il_vec3 size, il_vec3 p, il_vec3 d)
     return tf;
 }
 
-/* Whether a segment that starts at o, inside the cell holding p, entered
- * the cell through its boundary: o within tol of the face by which the
- * line through p along d enters the cell. */
-static bool starts_on_entry_face(const il_linespace *ls, il_vec3 o, il_vec3 p, il_vec3 d, float tol)
+/* Whether a segment that starts inside a cell, -t_cell before the point
+ * where its line (in shaft `shaft`, direction `dir`) enters the cell,
+ * starts within tol of that entry face: its distance to the face's plane
+ * is -t_cell times d's component across it. */
+static bool starts_on_entry_face(const il_linespace *ls, il_vec3 d, uint32_t shaft, uint32_t dir, float t_cell,
+                                 float tol)
 {
-    uint32_t cc[3], fi, pi, fo, po;
-    float tin, tout;
-    il_vec3 lo;
-    if (!il_ls_cell_of(ls, p, cc))
-        return false;
-    il_ls_cell_box(ls, cc, &lo);
-    if (!il_ls_locate(lo, ls->vsize, ls->n, p, d, &fi, &pi, &fo, &po, &tin, &tout))
-        return false;
-    int axis = (int)(fi / 2u);
-    float plane = v3_get(lo, axis) + ((fi & 1u) ? v3_get(ls->vsize, axis) : 0.0f);
-    return fabsf(v3_get(o, axis) - plane) <= tol;
+    uint32_t fa, pa, fb, pb;
+    il_ls_shaft_patches(ls->n, shaft, &fa, &pa, &fb, &pb);
+    uint32_t entry = dir ? fb : fa; /* dir 0: from the lower face to the higher */
+    return -t_cell * fabsf(v3_get(d, (int)(entry / 2u))) <= tol;
 }
 
 void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float start_tol,
@@ -93,7 +88,7 @@ void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float
             /* Where the line enters the cell, on the segment's parameter:
              * past its start for every cell but (mostly) the first. */
             float t_cell = v3_dot(v3_sub(p, o), d) + tin;
-            bool entered = t_cell >= -step_eps || starts_on_entry_face(ls, o, p, d, face_tol);
+            bool entered = t_cell >= -step_eps || starts_on_entry_face(ls, d, shaft, dir, t_cell, face_tol);
             visit(user, voxel, shaft, dir, tout - tin, entered);
         }
         t = t_next;
