@@ -200,10 +200,12 @@ int il_viewer_run(const il_viewer_options *o)
             v.fps_start = now;
         }
         if (v.spin_until > 0.0 && now < v.spin_until) {   /* scripted '~' */
-            v.cam.yaw += 0.01f;
+            v.cam.yaw = v.spin_yaw0 + (float)(SPIN_RADIANS * (now - v.spin_start) / SPIN_SECONDS);
             il_view_camera_moved(&v);
             v.spin_frames++;
         } else if (v.spin_until > 0.0) {
+            v.cam.yaw = v.spin_yaw0 + (float)SPIN_RADIANS;   /* the same end pose on any machine */
+            il_view_camera_moved(&v);
             v.spin_fps = v.spin_frames / (now - v.spin_start);
             v.spin_pps = v.spin_previews / (now - v.spin_start);
             v.spin_until = 0.0;

@@ -20,6 +20,8 @@
 /* Seconds the camera must rest before the full-resolution render starts
  * (and the mesh view draws with all its samples per pixel). */
 #define REST_SECONDS 0.15
+#define SPIN_SECONDS 2.0               /* the scripted orbit (key '~') lasts this long */
+#define SPIN_RADIANS 0.5              /* and turns the camera this far */
 
 typedef struct orbit {
     il_vec3 target, up;
@@ -75,11 +77,15 @@ typedef struct viewer {
     GLuint points_vao, points_vbo;
     GLsizei num_points;
     /* Frame rate: frames drawn per second, over the last half second or
-     * more; and a scripted '~' (2 s of orbiting, one step per frame): the
-     * frames and the preview images shown per second while the camera moved. */
+     * more; and a scripted '~' (2 s orbiting SPIN_RADIANS at an even rate,
+     * from yaw spin_yaw0, one step per frame): the frames and the preview
+     * images shown per second while the camera moved. The angle follows the
+     * clock, not the frame count, so where the orbit ends does not depend on
+     * the machine's frame rate. */
     double fps, fps_start;
     uint32_t fps_frames;
     double spin_until, spin_start, spin_fps, spin_pps;
+    float spin_yaw0;
     uint32_t spin_frames, spin_previews;
     GLuint normal_vao, normal_vbo;
     GLsizei normal_vertices;

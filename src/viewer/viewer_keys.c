@@ -87,7 +87,8 @@ void il_view_scripted_key(viewer *v, char c)
 {
     if (c == '~') {                   /* orbit for 2 s, measuring the frame rate */
         v->spin_start = glfwGetTime();
-        v->spin_until = v->spin_start + 2.0;
+        v->spin_until = v->spin_start + SPIN_SECONDS;
+        v->spin_yaw0 = v->cam.yaw;
         v->spin_frames = v->spin_previews = 0;
         return;
     }
