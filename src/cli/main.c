@@ -25,7 +25,7 @@ static const char *usage =
     "\n"
     "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
     "scene file (docs/scene-format.md) or a built-in name: cornell, atrium,\n"
-    "simple-room, shadow-room, box-room, office.\n"
+    "simple-room, shadow-room, box-room, office, cornell-spheres.\n"
     "'illum COMMAND --help' lists a command's options.\n"
     "\n"
     "exit status: 0 success, 1 bad input (scene, file, option value), 2 usage error,\n"
