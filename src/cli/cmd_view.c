@@ -37,8 +37,9 @@ static const char *help =
     "                         scripted, radiosity/hr mesh: the window's pixels when it\n"
     "                         draws the first look at the solve in progress\n"
     "  --keys KEYS            scripted: press these keys one by one once the image is\n"
-    "                         complete ('<' '>' orbit left/right, '~' orbits 0.5 rad in 2 s\n"
-    "                         and measures the frame rate), e.g. --keys '>PC'\n"
+    "                         complete ('<' '>' orbit left/right, '~' orbits\n"
+    "                         0.5 rad in 2 s and measures the frame rate),\n"
+    "                         e.g. --keys '>PC'\n"
     "  --quiet                no warnings\n"
     "Each method's own options (see 'illum render --method M --help') apply when\n"
     "that method is shown.\n";
