@@ -1,7 +1,8 @@
 /* OpenEXR through the OpenEXR Core C API (<OpenEXR/openexr.h>, OpenEXR 3.1).
  *
  * Writing: one scanline part, channels R, G, B as half (default) or float,
- * ZIP compression (16 scanlines per chunk), through a custom write callback
+ * ZIP compression (16 scanlines per chunk; a chunk that does not shrink is
+ * stored raw, see compress_raw_when_no_smaller), through a custom write callback
  * into the temporary file of image.c.
  *
  * Reading: the first part, scanline or tiled (level 0 of a mip/rip map), from
@@ -262,6 +263,30 @@ done:
 
 /* ---------------------------------------------------------------- write */
 
+/* The library's ZIP compressor, then the file format's rule: a chunk whose
+ * compressed size is not below its raw size is stored raw, and a reader
+ * takes a chunk whose stored size equals its raw size as raw.  The OpenEXR
+ * Core library kept the compressed bytes when the two sizes were equal
+ * until March 2026 (openexr issue #2306, pull request #2307; Debian 12 has
+ * 3.1.5), so every reader decoded zlib bytes as pixels: a 32x32 float image
+ * of ibl's lit bunny came back with its first 16 rows as garbage.  Storing
+ * that chunk raw is what the fixed library does.  encoding_user_data holds
+ * the library's compressor. */
+typedef exr_result_t (*exr_compress_fn)(exr_encode_pipeline_t *);
+typedef struct exr_compressor {
+    exr_compress_fn library;
+} exr_compressor;
+
+static exr_result_t compress_raw_when_no_smaller(exr_encode_pipeline_t *enc)
+{
+    const exr_compressor *c = enc->encoding_user_data;
+    exr_result_t rv = c->library(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rv;
+}
+
 il_status il_exr_write(const il_image *image, FILE *f, const char *path,
                        il_exr_precision precision, il_error *err)
 {
@@ -299,6 +324,7 @@ il_status il_exr_write(const il_image *image, FILE *f, const char *path,
         rv = EXR_ERR_INVALID_ATTR;
 
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    exr_compressor compressor;
     bool initialized = false;
     for (int32_t y = 0; rv == EXR_ERR_SUCCESS && y < (int32_t)image->height; y += lines) {
         exr_chunk_info_t cinfo;
@@ -321,6 +347,11 @@ il_status il_exr_write(const il_image *image, FILE *f, const char *path,
             ch->user_bytes_per_element = (int16_t)sizeof(float);
         }
         rv = exr_encoding_choose_default_routines(ctxt, part, &enc);
+        if (rv == EXR_ERR_SUCCESS && enc.compress_fn) {
+            compressor.library = enc.compress_fn;
+            enc.encoding_user_data = &compressor;
+            enc.compress_fn = compress_raw_when_no_smaller;
+        }
         if (rv == EXR_ERR_SUCCESS)
             rv = exr_encoding_run(ctxt, part, &enc);
     }
