@@ -122,41 +122,65 @@ static void test_exr_float_exact(void)
 /* A ZIP chunk whose compressed size equals its raw size must be stored raw
  * (readers take it as raw): the OpenEXR Core library kept the zlib bytes
  * there until 2026 (openexr issue #2306) and the chunk read back as
- * garbage; src/image/exr.c stores it raw.  One 32x16 chunk of 12-byte pixels is 6144 raw bytes; m of
- * its pixels hold random 28-bit patterns (finite floats, incompressible)
- * and the rest a constant, so the compressed size climbs about 12 bytes per
- * m through 6144 near m = 500.  With the library's compressor alone, 3 of
- * these 480 images came back wrong (Debian 12's OpenEXR 3.1.5 and zlib,
- * 2026-11-28). */
-static void test_exr_float_incompressible_chunks(void)
+ * garbage; src/image/exr.c stores it raw.  One 32x16 chunk is 6144 raw
+ * bytes in float, 3072 in half; m of its pixels hold random values that
+ * the precision stores exactly (28-bit float patterns, or any finite
+ * normal half) and the rest 1.0, so the compressed size climbs 6-12 bytes
+ * per m through the raw size near m = 500.  With the library's compressor
+ * alone, 3 of the 480 float images and 6 of the 1920 half ones came back
+ * wrong (Debian 12's OpenEXR 3.1.5 and zlib, 2026-11-28). */
+static float random_value(uint32_t r, il_exr_precision precision)
+{
+    if (precision == IL_EXR_FLOAT) {
+        uint32_t bits = 0x30000000u | (r >> 4); /* exponent 96..127: finite */
+        float v;
+        memcpy(&v, &bits, sizeof v);
+        return v;
+    }
+    r ^= r >> 16;                              /* the LCG's low bits repeat: mix */
+    r *= 0x7feb352du;
+    r ^= r >> 15;
+    r *= 0x846ca68bu;
+    r ^= r >> 16;
+    int e = 1 + (int)((r >> 10) % 30u);        /* half exponent 1..30: normal */
+    float v = ldexpf(1.0f + (float)(r & 1023u) / 1024.0f, e - 15);
+    return (r >> 31) ? -v : v;
+}
+
+static void test_exr_incompressible_chunks(void)
 {
     char p[1100];
     il_error err = {0};
-    uint32_t state = 12345u, wrong = 0;
-    for (uint32_t seed = 0; seed < 16; seed++) {
-        for (uint32_t m = 490; m < 520; m++) {
-            il_image im = {0};
-            CHECK_OK(il_image_alloc(&im, 32, 16, &err), &err);
-            for (uint32_t i = 0; i < 32u * 16u * 3u; i++) {
-                uint32_t bits = 0x3f800000u; /* 1.0 */
-                if (i / 3u < m) {
-                    state = state * 1664525u + 1013904223u + seed;
-                    bits = 0x30000000u | (state >> 4); /* exponent 96..127: finite */
+    for (int prec = 0; prec < 2; prec++) {
+        il_exr_precision precision = prec ? IL_EXR_HALF : IL_EXR_FLOAT;
+        uint32_t state = 12345u, wrong = 0;
+        uint32_t seeds = prec ? 64u : 16u;
+        for (uint32_t seed = 0; seed < seeds; seed++) {
+            /* the crossing: near m = 505 in float, 500 in half (of 512) */
+            for (uint32_t m = prec ? 483u : 490u, end = m + 30u; m < end; m++) {
+                il_image im = {0};
+                CHECK_OK(il_image_alloc(&im, 32, 16, &err), &err);
+                for (uint32_t i = 0; i < 32u * 16u * 3u; i++) {
+                    im.rgb[i] = 1.0f;
+                    if (i / 3u < m) {
+                        state = state * 1664525u + 1013904223u + seed;
+                        im.rgb[i] = random_value(state, precision);
+                    }
                 }
-                memcpy(&im.rgb[i], &bits, sizeof bits);
+                il_write_desc wd = {.exr_precision = precision};
+                CHECK_OK(il_image_write(&im, tmp_path(p, "incompressible.exr"), &wd, &err), &err);
+                il_image back = {0};
+                CHECK_OK(il_image_read(p, &back, &err), &err);
+                wrong += !same_bits(&im, &back);
+                il_image_free(&back);
+                il_image_free(&im);
             }
-            il_write_desc wd = {.exr_precision = IL_EXR_FLOAT};
-            CHECK_OK(il_image_write(&im, tmp_path(p, "incompressible.exr"), &wd, &err), &err);
-            il_image back = {0};
-            CHECK_OK(il_image_read(p, &back, &err), &err);
-            wrong += !same_bits(&im, &back);
-            il_image_free(&back);
-            il_image_free(&im);
         }
+        CHECK(wrong == 0);
+        if (wrong > 0)
+            fprintf(stderr, "%u of %u %s EXR chunks near their raw size read back wrong\n", wrong,
+                    30u * seeds, prec ? "half" : "float");
     }
-    CHECK(wrong == 0);
-    if (wrong > 0)
-        fprintf(stderr, "%u of 480 float EXR chunks near their raw size read back wrong\n", wrong);
 }
 
 static void test_exr_half(void)
@@ -812,7 +836,7 @@ int main(void)
     clean_dir();
     test_alloc();
     test_exr_float_exact();
-    test_exr_float_incompressible_chunks();
+    test_exr_incompressible_chunks();
     test_exr_half();
     test_hdr_rgbe();
     test_hdr_special_values();
