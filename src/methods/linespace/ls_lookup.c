@@ -220,7 +220,8 @@ void il_ls_probe_slot(const il_linespace *ls, il_ls_test test, il_ls_probe *pr)
         pr->coarse = coarse_of(ls, pr->voxel, pr->shaft, pr->dir);
         if (pr->coarse)
             __builtin_prefetch(pr->coarse);
-        /* (A coarse entry may hold light: its record may be tested.) */
+        /* The record is fetched when the test may run on it: a coarse
+         * entry counts as lit here (il_ls_read_probe checks whether it is). */
         if (!il_ls_tested(test, pr->coarse != NULL) || slot < 0)
             return;
     }

@@ -20,8 +20,8 @@
  * an empty entry does too, else it reads as no light, the estimator's own
  * value).  Phong lobes sharper than n2 always trace on, below n1 read the
  * Linespace; between, the Linespace is read with probability
- * (n2 - e) / (n2 - n1), which blends
- * the two estimates linearly.  The final gather (Jensen 2001, 9.3.2,
+ * (n2 - e) / (n2 - n1), which blends the two estimates linearly.  The
+ * final gather (Jensen 2001, 9.3.2,
  * as the photon mapper's) traces the first non-delta bounce on and reads
  * at the next non-delta hit, where the field's per-voxel error is averaged
  * over the first hit's hemisphere. */
@@ -260,6 +260,16 @@ static void path_finish_vertex(ls_path *p, bool occluded)
     p->shadow = p->read = false;
 }
 
+/* A lookup whose occlusion test il_ls_read_probe left as a ray
+ * (IL_LS_TRACE, IL_LS_TRACE_EMPTY), once the ray is traced: occluded when
+ * it hit, else what the entry holds. */
+static il_ls_lookup_status after_occlusion_ray(il_ls_lookup_status left, bool hit)
+{
+    if (hit)
+        return IL_LS_OCCLUDED;
+    return left == IL_LS_TRACE ? IL_LS_FOUND : IL_LS_EMPTY;
+}
+
 /* Paths advanced together: one 16x16 tile at one sample per pixel. */
 #define LS_WAVE 256u
 #define LS_PAIRS 4u
@@ -388,9 +398,7 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
         if (num_tracing > 0) {
             il_trace_occluded_n(tr, w->occ_rays, w->occ_hit, num_tracing);
             for (uint32_t t = 0; t < num_tracing; t++)
-                w->status[w->tracing[t]] = w->occ_hit[t]                                 ? IL_LS_OCCLUDED
-                                           : w->status[w->tracing[t]] == IL_LS_TRACE ? IL_LS_FOUND
-                                                                                     : IL_LS_EMPTY;
+                w->status[w->tracing[t]] = after_occlusion_ray(w->status[w->tracing[t]], w->occ_hit[t]);
         }
         for (uint32_t k = 0; k < num_looking; k++) {
             uint32_t j = w->looking[k];
