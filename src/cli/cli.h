@@ -259,6 +259,20 @@ bool cli_method_options_parse(int argc, char **argv, int *i, cli_method_options 
 /* Points desc's per-method option pointers at m's descs. */
 void cli_method_options_install(cli_method_options *m, il_render_desc *desc);
 
+/* The run options render, view and bake share (cli_run.c): --seed S,
+ * --threads T (1 to 4096), --quiet (-q) and, when `sampling`, --spp N
+ * (1 to 2^24) and --max-depth D (1 to 1024). */
+typedef struct cli_run_options {
+    bool sampling;                   /* set by the command: it takes --spp and --max-depth */
+    bool quiet;                      /* --quiet or -q */
+    bool has_seed;                   /* --seed was given */
+} cli_run_options;
+
+/* As cli_radiosity_option, for the options above, into desc. */
+bool cli_run_option(int argc, char **argv, int *i, il_render_desc *desc, cli_run_options *o, int *rc);
+/* --exposure EV of every command that writes display colours: -50 to 50. */
+bool cli_parse_exposure(const char *opt, const char *s, double *out);
+
 /* The camera options of render and view (cli_camera.c): --camera-pos,
  * --camera-target, --camera-up, --fov, --camera-file. */
 typedef struct cli_camera_options {

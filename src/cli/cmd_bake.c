@@ -36,7 +36,7 @@ typedef struct bake_options {
     const char *stats;
     il_render_desc desc;
     il_bake_write_desc write;
-    bool quiet;
+    cli_run_options run;             /* --seed, --threads, --quiet */
     cli_radiosity_options rad;
     cli_hr_options hr;
     cli_env_options env;             /* --env and its settings */
@@ -70,7 +70,8 @@ static int parse_options(int argc, char **argv, bake_options *o)
         const char *v = NULL;
         int opt_rc;
         if (cli_radiosity_option(argc, argv, &i, &o->rad, &opt_rc) ||
-            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc)) {
+            cli_hr_option(argc, argv, &i, &o->hr, &opt_rc) ||
+            cli_run_option(argc, argv, &i, &o->desc, &o->run, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -112,24 +113,12 @@ static int parse_options(int argc, char **argv, bake_options *o)
         } else if (!strcmp(a, "--exposure")) {
             VALUE();
             double ev;
-            if (!cli_parse_double(a, v, -50.0, 50.0, &ev))
+            if (!cli_parse_exposure(a, v, &ev))
                 return IL_EXIT_BAD_INPUT;
             o->write.exposure = (float)ev;
-        } else if (!strcmp(a, "--seed")) {
-            VALUE();
-            if (!cli_parse_u64(a, v, &o->desc.seed))
-                return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--threads")) {
-            VALUE();
-            uint32_t t;
-            if (!cli_parse_u32(a, v, 1, 1024, &t))
-                return IL_EXIT_BAD_INPUT;
-            o->desc.threads = (int)t;
         } else if (!strcmp(a, "--stats")) {
             VALUE();
             o->stats = v;
-        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            o->quiet = true;
         } else {
             int rc = cli_scene_argument("bake", a, &o->scene);
             if (rc != IL_EXIT_OK)
@@ -191,10 +180,10 @@ int cmd_bake(int argc, char **argv)
         return rc;
 
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
+    if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
 
-    cli_radiosity_install_progress(&o.rad, o.quiet, &interrupted);
+    cli_radiosity_install_progress(&o.rad, o.run.quiet, &interrupted);
     o.desc.radiosity = &o.rad.desc;
     o.desc.hr = &o.hr.desc;
     struct sigaction sa = {0}, old_sa;
@@ -213,7 +202,7 @@ int cmd_bake(int argc, char **argv)
         il_scene_release(scene);
         return cli_exit_for(st);
     }
-    if (!o.quiet) {
+    if (!o.run.quiet) {
         if (o.desc.method == IL_METHOD_HR)
             cli_hr_summary(&bake->stats.hr);
         else

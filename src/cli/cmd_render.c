@@ -72,9 +72,8 @@ typedef struct render_options {
     il_render_desc desc;
     il_write_desc write;
     cli_tonemap_options tm;          /* --tonemap and the rest: PNG outputs */
-    bool quiet;
+    cli_run_options run;             /* --spp, --max-depth, --seed, --threads, --quiet */
     bool cuda;                       /* --device cuda */
-    bool has_seed;
     cli_camera_options camera;       /* --camera-* and --fov */
     bool has_method;
     cli_method_options m;            /* each method's own options */
@@ -192,7 +191,8 @@ static int parse_options(int argc, char **argv, render_options *o)
             continue;
         }
         if (cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
-            cli_camera_option(argc, argv, &i, &o->camera, &opt_rc)) {
+            cli_camera_option(argc, argv, &i, &o->camera, &opt_rc) ||
+            cli_run_option(argc, argv, &i, &o->desc, &o->run, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -227,10 +227,6 @@ static int parse_options(int argc, char **argv, render_options *o)
                 return IL_EXIT_BAD_INPUT;
             }
             o->has_method = true;
-        } else if (!strcmp(a, "--spp")) {
-            VALUE();
-            if (!cli_parse_u32(a, v, 1, 1u << 24, &o->desc.spp))
-                return IL_EXIT_BAD_INPUT;
         } else if (!strcmp(a, "--time")) {
             VALUE();
             if (!cli_parse_double(a, v, 1e-3, 1e7, &o->desc.time_limit))
@@ -243,27 +239,12 @@ static int parse_options(int argc, char **argv, render_options *o)
             VALUE();
             if (!cli_parse_u32(a, v, 1, 16384, &o->height))
                 return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--max-depth")) {
-            VALUE();
-            if (!cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth))
-                return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--seed")) {
-            VALUE();
-            if (!cli_parse_u64(a, v, &o->desc.seed))
-                return IL_EXIT_BAD_INPUT;
-            o->has_seed = true;
         } else if (!strcmp(a, "--device")) {
             VALUE();
             if (!cli_device_from_name(v, &o->cuda)) {
                 cli_error("--device: unknown device '%s' (available: cpu, cuda)", v);
                 return IL_EXIT_BAD_INPUT;
             }
-        } else if (!strcmp(a, "--threads")) {
-            VALUE();
-            uint32_t t;
-            if (!cli_parse_u32(a, v, 1, 1024, &t))
-                return IL_EXIT_BAD_INPUT;
-            o->desc.threads = (int)t;
         } else if (!strcmp(a, "--sampler")) {
             VALUE();
             if (!strcmp(v, "sobol"))
@@ -311,14 +292,12 @@ static int parse_options(int argc, char **argv, render_options *o)
         } else if (!strcmp(a, "--exposure")) {
             VALUE();
             double ev;
-            if (!cli_parse_double(a, v, -50.0, 50.0, &ev))
+            if (!cli_parse_exposure(a, v, &ev))
                 return IL_EXIT_BAD_INPUT;
             o->write.exposure = (float)ev;
         } else if (!strcmp(a, "--stats")) {
             VALUE();
             o->stats = v;
-        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            o->quiet = true;
         } else {
             int rc = cli_scene_argument("render", a, &o->scene);
             if (rc != IL_EXIT_OK)
@@ -370,7 +349,7 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     }
     if (o->desc.max_depth == 0)
         o->desc.max_depth = rs.max_depth;
-    if (!o->has_seed)
+    if (!o->run.has_seed)
         o->desc.seed = rs.seed;
     return IL_EXIT_OK;
 }
@@ -421,8 +400,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
 int cmd_render(int argc, char **argv)
 {
     double t0 = now_seconds();
-    render_options o = {0};
-    o.width = 0;
+    render_options o = {.run.sampling = true};
     int rc = parse_options(argc, argv, &o);
     if (rc == -1)
         return IL_EXIT_OK;
@@ -431,7 +409,7 @@ int cmd_render(int argc, char **argv)
     if (o.cuda && (rc = cli_device_require_cuda()) != IL_EXIT_OK)
         return rc;
     if (cli_mpi_rank() > 0)
-        o.quiet = true; /* under mpirun only rank 0 reports */
+        o.run.quiet = true; /* under mpirun only rank 0 reports */
     if ((o.mpi.checkpoint_every > 0.0 || o.mpi.checkpoint) && !cli_mpi_active()) {
         cli_error("--checkpoint-every and --checkpoint work under mpirun (mpirun -np 1 for one process)");
         return IL_EXIT_USAGE;
@@ -447,7 +425,7 @@ int cmd_render(int argc, char **argv)
     o.mpi.write_every = o.write_every;
 
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
+    if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
     if ((rc = apply_scene_settings(scene, &o)) != IL_EXIT_OK ||
         (rc = check_method_options(&o, true)) != IL_EXIT_OK) {
@@ -471,14 +449,14 @@ int cmd_render(int argc, char **argv)
         return cli_exit_for(err.status);
     }
     o.write.tonemap = cli_tonemap_desc(&o.tm, o.write.exposure);
-    progress_state ps = {.draw = !o.quiet && isatty(STDERR_FILENO), .o = &o,
+    progress_state ps = {.draw = !o.run.quiet && isatty(STDERR_FILENO), .o = &o,
                          .next_write = o.write_every};
     o.desc.progress = on_progress;
     o.desc.progress_user = &ps;
     if (o.desc.method == IL_METHOD_RADIOSITY) {
         /* The solve draws its own line and ends early on Ctrl-C; the camera
          * pass after it draws the usual bar. */
-        cli_radiosity_install_progress(&o.m.rad, o.quiet, &interrupted);
+        cli_radiosity_install_progress(&o.m.rad, o.run.quiet, &interrupted);
     }
     cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
@@ -489,7 +467,7 @@ int cmd_render(int argc, char **argv)
     il_render_stats rs = {0};
     il_image cuda_img = {0};
     il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &cuda_img, &rs, &err)
-                   : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &o.mpi, &rs, !o.quiet, &err)
+                   : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &o.mpi, &rs, !o.run.quiet, &err)
                                       : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.m.rad);
@@ -518,7 +496,7 @@ int cmd_render(int argc, char **argv)
         il_scene_release(scene);
         return cli_exit_for(st);
     }
-    if (!o.quiet) {
+    if (!o.run.quiet) {
         if (o.desc.method == IL_METHOD_RADIOSITY)
             cli_radiosity_summary(&rs.radiosity);
         else if (o.desc.method == IL_METHOD_HR)

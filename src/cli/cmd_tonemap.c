@@ -58,7 +58,7 @@ int cmd_tonemap(int argc, char **argv)
             const char *v = cli_value(argc, argv, &i);
             if (!v)
                 return IL_EXIT_USAGE;
-            if (!cli_parse_double(a, v, -50.0, 50.0, &exposure))
+            if (!cli_parse_exposure(a, v, &exposure))
                 return IL_EXIT_BAD_INPUT;
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             quiet = true;

@@ -52,7 +52,7 @@ typedef struct view_options {
     cli_tonemap_options tm;
     cli_env_options env;
     cli_method_options m;            /* each method's own options, as for render */
-    bool quiet;
+    cli_run_options run;             /* --spp, --max-depth, --seed, --threads, --quiet */
     cli_camera_options camera;       /* --camera-* and --fov */
 } view_options;
 
@@ -65,7 +65,8 @@ static int parse_options(int argc, char **argv, view_options *o)
         if (cli_tonemap_option(argc, argv, &i, false, &o->tm, &opt_rc) ||
             cli_env_option(argc, argv, &i, &o->env, &opt_rc) ||
             cli_camera_option(argc, argv, &i, &o->camera, &opt_rc) ||
-            cli_method_options_parse(argc, argv, &i, &o->m, &opt_rc)) {
+            cli_method_options_parse(argc, argv, &i, &o->m, &opt_rc) ||
+            cli_run_option(argc, argv, &i, &o->desc, &o->run, &opt_rc)) {
             if (opt_rc != IL_EXIT_OK)
                 return opt_rc;
             continue;
@@ -85,10 +86,6 @@ static int parse_options(int argc, char **argv, view_options *o)
                           "(available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)", v);
                 return IL_EXIT_BAD_INPUT;
             }
-        } else if (!strcmp(a, "--spp")) {
-            VALUE();
-            if (!cli_parse_u32(a, v, 1, 1u << 24, &o->desc.spp))
-                return IL_EXIT_BAD_INPUT;
         } else if (!strcmp(a, "--width")) {
             VALUE();
             if (!cli_parse_u32(a, v, 8, 8192, &o->width))
@@ -97,23 +94,9 @@ static int parse_options(int argc, char **argv, view_options *o)
             VALUE();
             if (!cli_parse_u32(a, v, 8, 8192, &o->height))
                 return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--max-depth")) {
-            VALUE();
-            if (!cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth))
-                return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--seed")) {
-            VALUE();
-            if (!cli_parse_u64(a, v, &o->desc.seed))
-                return IL_EXIT_BAD_INPUT;
-        } else if (!strcmp(a, "--threads")) {
-            VALUE();
-            uint32_t t;
-            if (!cli_parse_u32(a, v, 1, 4096, &t))
-                return IL_EXIT_BAD_INPUT;
-            o->desc.threads = (int)t;
         } else if (!strcmp(a, "--exposure")) {
             VALUE();
-            if (!cli_parse_double(a, v, -64.0, 64.0, &o->exposure))
+            if (!cli_parse_exposure(a, v, &o->exposure))
                 return IL_EXIT_BAD_INPUT;
         } else if (!strcmp(a, "--save")) {
             VALUE();
@@ -131,8 +114,6 @@ static int parse_options(int argc, char **argv, view_options *o)
         } else if (!strcmp(a, "--keys")) {
             VALUE();
             o->keys = v;
-        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-            o->quiet = true;
         } else {
             int rc = cli_scene_argument("view", a, &o->scene);
             if (rc != IL_EXIT_OK)
@@ -164,7 +145,7 @@ static int parse_options(int argc, char **argv, view_options *o)
 
 int cmd_view(int argc, char **argv)
 {
-    view_options o = {0};
+    view_options o = {.run.sampling = true};
     int rc = parse_options(argc, argv, &o);
     if (rc == -1)
         return IL_EXIT_OK;
@@ -178,7 +159,7 @@ int cmd_view(int argc, char **argv)
     return IL_EXIT_RUNTIME;
 #else
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene_env(o.scene, o.quiet, &o.env, &scene)) != IL_EXIT_OK)
+    if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
     if ((rc = cli_camera_apply(scene, &o.camera)) != IL_EXIT_OK) {
         il_scene_release(scene);
@@ -196,7 +177,7 @@ int cmd_view(int argc, char **argv)
         .exposure = (float)o.exposure, .op = o.tm.desc.op, .frames = o.frames,
         .screenshot = o.screenshot, .look_screenshot = o.look_screenshot, .keys = o.keys,
         .save_prefix = o.save ? o.save : "illum-view",
-        .quiet = o.quiet};
+        .quiet = o.run.quiet};
     rc = il_viewer_run(&vo);
     il_scene_release(scene);
     return rc;

@@ -22,6 +22,29 @@ expect_exit 1 "unknown output format" -- "$ILLUM" render cornell -o a.bmp
 expect_exit 1 "camera looking at itself" -- "$ILLUM" render cornell --camera-pos 0,0,0 --camera-target 0,0,0 --spp 1 -o a.png
 expect_no_file a.png "bad options"
 
+# The options render, view and bake share take the same values in each.
+for cmd in render view bake; do
+    case $cmd in render) out="-o a.png" ;; bake) out="-o a.ply" ;; *) out="" ;; esac
+    expect_exit 1 "$cmd threads zero" -- "$ILLUM" $cmd cornell --threads 0 $out
+    expect_stderr "threads: expected a whole number from 1 to 4096" "$cmd threads zero"
+    expect_exit 1 "$cmd threads beyond 4096" -- "$ILLUM" $cmd cornell --threads 4097 $out
+    expect_stderr "from 1 to 4096" "$cmd threads beyond 4096"
+    expect_exit 1 "$cmd seed negative" -- "$ILLUM" $cmd cornell --seed -1 $out
+    expect_stderr "seed: expected a non-negative" "$cmd seed negative"
+    expect_exit 1 "$cmd exposure beyond 50" -- "$ILLUM" $cmd cornell --exposure 51 $out
+    expect_stderr "exposure: expected a number from -50 to 50" "$cmd exposure beyond 50"
+done
+for cmd in render view; do
+    expect_exit 1 "$cmd max depth zero" -- "$ILLUM" $cmd cornell --max-depth 0
+    expect_stderr "from 1 to 1024" "$cmd max depth zero"
+    expect_exit 1 "$cmd spp beyond 2^24" -- "$ILLUM" $cmd cornell --spp 16777217
+    expect_stderr "from 1 to 16777216" "$cmd spp beyond 2^24"
+done
+expect_exit 2 "bake takes no --spp" -- "$ILLUM" bake cornell --spp 4 -o a.ply
+expect_stderr "unknown option" "bake takes no --spp"
+expect_no_file a.ply "shared options"
+expect_no_file a.png "shared options"
+
 expect_exit 1 "missing scene file" -- "$ILLUM" render nonexistent.obj -o b.png
 expect_stderr "nonexistent.obj" "missing scene file"
 expect_no_file b.png "missing scene file"
