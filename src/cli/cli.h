@@ -58,7 +58,8 @@ int cli_load_scene(const char *path, bool quiet, il_scene **out);
 bool cli_write_json(const char *path, struct cJSON *json);
 
 /* Method names and the pieces every method's own option set shares (cli_method.c). */
-bool cli_method_from_name(const char *name, il_method *out); /* "pt", "radiosity", "hr", "photon", "sppm" */
+bool cli_method_from_name(const char *name, il_method *out); /* one of CLI_METHOD_NAMES */
+#define CLI_METHOD_NAMES "pt, radiosity, hr, photon, sppm, ibl, linespace, rsm"
 const char *cli_method_name(il_method method);
 
 /* Which options of one method's set the command line gave. */

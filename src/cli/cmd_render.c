@@ -223,7 +223,7 @@ static int parse_options(int argc, char **argv, render_options *o)
             VALUE();
             if (!cli_method_from_name(v, &o->desc.method)) {
                 cli_error("--method: unknown method '%s' "
-                          "(available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)", v);
+                          "(available: " CLI_METHOD_NAMES ")", v);
                 return IL_EXIT_BAD_INPUT;
             }
             o->has_method = true;
@@ -333,7 +333,7 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
         return IL_EXIT_OK;
     il_method method = IL_METHOD_PT;
     if (rs.method[0] && !cli_method_from_name(rs.method, &method)) {
-        cli_error("%s: unknown method '%s' in the render settings (available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)",
+        cli_error("%s: unknown method '%s' in the render settings (available: " CLI_METHOD_NAMES ")",
                   o->scene, rs.method);
         return IL_EXIT_BAD_INPUT;
     }

@@ -83,7 +83,7 @@ static int parse_options(int argc, char **argv, view_options *o)
             VALUE();
             if (!cli_method_from_name(v, &o->desc.method)) {
                 cli_error("--method: unknown method '%s' "
-                          "(available: pt, radiosity, hr, photon, sppm, ibl, linespace, rsm)", v);
+                          "(available: " CLI_METHOD_NAMES ")", v);
                 return IL_EXIT_BAD_INPUT;
             }
         } else if (!strcmp(a, "--width")) {
