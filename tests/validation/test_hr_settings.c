@@ -27,6 +27,7 @@ int main(void)
     CHECK_NEAR(set.area_eps, 2000.0 / (1700.0 * 1700.0), 1e-9);
     CHECK_NEAR(set.energy_eps, 0.005, 1e-7);
     CHECK(set.vis_rays == 16 && set.max_iterations == 100 && set.threads >= 1);
+    CHECK(set.link_memory_limit > 0);
 
     il_scene *s = hr_room(false, true);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
@@ -46,6 +47,25 @@ int main(void)
     CHECK(il_render(s, film, &bad, NULL, &e) == IL_ERR_INVALID);
     CHECK(strstr(e.message, "unknown method") != NULL);
     il_film_release(film);
+
+    /* The initial links are counted before any is made: a scene whose
+     * links exceed the limit (half the physical memory; here 100 bytes) is
+     * refused with a message saying why, and one that fits solves. */
+    il_patch_mesh *roots = NULL;
+    CHECK_OK(il_hr_root_mesh(s, &roots, &g_err), &g_err);
+    il_hr_settings tight = set;
+    tight.link_memory_limit = 100;
+    il_hr_solver solver;
+    il_error me = {0};
+    CHECK(il_hr_solve(s, roots, &tight, &solver, &me) == IL_ERR_MEMORY);
+    CHECK(strstr(me.message, "13 patches make") && strstr(me.message, "initial links") &&
+          strstr(me.message, "--method radiosity"));
+    tight.link_memory_limit = 13 * 12 * sizeof(il_hr_link); /* every ordered pair */
+    tight.max_iterations = 1;
+    CHECK_OK(il_hr_solve(s, roots, &tight, &solver, &g_err), &g_err);
+    CHECK(solver.stats.links > 0);
+    il_hr_solver_free(&solver);
+    il_patch_mesh_release(roots);
 
     /* HR bakes: every scene mesh, positive radiance on the lit walls, the
      * lamp's vertices at least its emission. */

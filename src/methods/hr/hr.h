@@ -54,6 +54,9 @@ typedef struct il_hr_settings {
     uint32_t max_iterations;
     uint64_t seed;
     int threads;               /* > 0, resolved */
+    /* The bytes the initial links may take: half the physical memory.  A
+     * scene that needs more is refused before any link is made (hr_solve.c). */
+    uint64_t link_memory_limit;
     const il_distrib *distrib; /* the render split across processes (hr_distrib.c); NULL: not */
     /* Internal (il_bake_progressive, bake.c): called after every iteration
      * (refine, gather, push-pull) with the solver; false stops the

@@ -11,6 +11,7 @@
  *   energy_eps: relative change of the total energy, as SPLASH-2. */
 #include <math.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include "core/error.h"
 #include "methods/distrib.h"
@@ -58,6 +59,12 @@ il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out
     out->on_iteration = NULL;
     out->on_iteration_user = NULL;
     out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+    out->link_memory_limit = UINT64_MAX;
+#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGESIZE)
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0)
+        out->link_memory_limit = (uint64_t)pages * (uint64_t)page / 2;
+#endif
     if (out->threads < 1)
         out->threads = 1;
     return IL_OK;

@@ -100,6 +100,12 @@ void il_hr_solver_free(il_hr_solver *s)
     memset(s, 0, sizeof *s);
 }
 
+/* A root that reflects light gathers it through links (when any light is). */
+static bool gathers(const il_hr_solver *s, const il_hr_elem *r)
+{
+    return !v3_is_zero(r->rho) && s->b_max > 0.0f;
+}
+
 static il_status setup(il_hr_solver *s, il_error *err)
 {
     uint32_t n = s->num_roots;
@@ -131,12 +137,32 @@ static il_status setup(il_hr_solver *s, il_error *err)
      * between lit surfaces look negligible and the solution 5-10% dark. */
     s->b_ref = area > 0.0 ? (float)(power / area) : 0.0f;
     /* Initial links: every pair of roots that face each other (a receiver
-     * that reflects nothing needs none). */
+     * that reflects nothing needs none).  Their number grows with the square
+     * of the patch count (Hanrahan et al. 1991 link the input polygons, with
+     * no clustering), so they are counted first: a scene whose links would
+     * not fit is refused with a message instead of the system killing the
+     * process part-way. */
+    double link_bytes = (double)sizeof(il_hr_link), limit = (double)s->set.link_memory_limit;
+    uint64_t pairs = 0;
+    if ((double)n * (double)n * link_bytes > limit) { /* else every pair fits: no need */
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nt) reduction(+ : pairs)
+        for (uint32_t i = 0; i < n; i++)
+            for (uint32_t j = 0; j < n && gathers(s, &s->roots[i]); j++)
+                pairs += j != i && il_hr_facing(s, &s->roots[i], &s->roots[j]);
+    }
+    double bytes = (double)pairs * link_bytes;
+    if (bytes > limit)
+        return il_fail(err, IL_ERR_MEMORY,
+                       "hr: %u patches make %llu initial links (%.2f GB), more than half of this "
+                       "machine's memory: hierarchical radiosity links every pair of input polygons "
+                       "that face each other, so its memory grows with their number squared; use "
+                       "--method radiosity (or pt) for a mesh this large",
+                       n, (unsigned long long)pairs, bytes / 1e9);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (uint32_t i = 0; i < n; i++) {
         il_hr_pool *pool = &s->pools[omp_get_thread_num()];
         il_hr_elem *r = &s->roots[i];
-        if (v3_is_zero(r->rho) || !(s->b_max > 0.0f))
+        if (!gathers(s, r))
             continue;
         for (uint32_t j = 0; j < n && !pool->failed; j++) {
             if (j == i || !il_hr_facing(s, r, &s->roots[j]))
