@@ -10,7 +10,9 @@ static const char *help =
     "\n"
     "Loads SCENE (a file or a built-in name), validates it and prints the counts\n"
     "of meshes, triangles, materials, lights, the bounds, the camera and every\n"
-    "warning raised while loading.  --devices lists the compute devices instead:\n"
+    "warning raised while loading.  A scene that loads but cannot be rendered (no\n"
+    "light, no valid triangle) is still described, then the reason is given and\n"
+    "the exit status is 1.  --devices lists the compute devices instead:\n"
     "the CPU and each CUDA GPU (name, memory, compute capability, driver), or why\n"
     "there is none.\n";
 
@@ -34,16 +36,23 @@ int cmd_info(int argc, char **argv)
     }
     if (cli_require_scene("info", path) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
+    /* Loaded and committed here rather than by cli_load_scene, so that a
+     * scene that loads but cannot be rendered is still described. */
     il_scene *scene = NULL;
-    /* Warnings are listed below, so the loader need not print them too. */
-    int rc = cli_load_scene(path, true, &scene);
-    if (rc != IL_EXIT_OK)
-        return rc;
+    il_error err = {0};
+    il_load_desc ld = {0}; /* warnings are listed below */
+    il_status st = il_scene_load(path, &ld, &scene, &err);
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        return cli_exit_for(st);
+    }
+    il_error commit_err = {0};
+    il_status commit_st = il_scene_commit(scene, &commit_err);
     (void)quiet;
     il_scene_info in;
     il_scene_get_info(scene, &in);
     il_camera_desc cam;
-    il_scene_get_camera(scene, &cam);
+    bool has_camera = il_scene_get_camera(scene, &cam);
     printf("scene:      %s\n", path);
     printf("meshes:     %u\n", in.num_meshes);
     printf("triangles:  %llu (%llu emissive, %llu dropped)\n", (unsigned long long)in.num_triangles,
@@ -55,13 +64,21 @@ int cmd_info(int argc, char **argv)
     printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", (double)in.bounds_min.x,
            (double)in.bounds_min.y, (double)in.bounds_min.z, (double)in.bounds_max.x,
            (double)in.bounds_max.y, (double)in.bounds_max.z);
-    printf("camera:     position (%g, %g, %g) target (%g, %g, %g) up (%g, %g, %g) fov %g\n",
-           (double)cam.position.x, (double)cam.position.y, (double)cam.position.z,
-           (double)cam.target.x, (double)cam.target.y, (double)cam.target.z, (double)cam.up.x,
-           (double)cam.up.y, (double)cam.up.z, (double)cam.fov_y);
+    if (has_camera)
+        printf("camera:     position (%g, %g, %g) target (%g, %g, %g) up (%g, %g, %g) fov %g\n",
+               (double)cam.position.x, (double)cam.position.y, (double)cam.position.z,
+               (double)cam.target.x, (double)cam.target.y, (double)cam.target.z, (double)cam.up.x,
+               (double)cam.up.y, (double)cam.up.z, (double)cam.fov_y);
+    else
+        printf("camera:     none\n");
     printf("warnings:   %u\n", in.num_warnings);
     for (uint32_t i = 0; i < in.num_warnings; i++)
         printf("  warning: %s\n", il_scene_warning(scene, i));
     il_scene_release(scene);
+    if (commit_st != IL_OK) {
+        fflush(stdout);
+        cli_error("%s: %s", path, commit_err.message);
+        return cli_exit_for(commit_st);
+    }
     return IL_EXIT_OK;
 }

@@ -75,6 +75,9 @@ expect_file room.bin "bake gltf buffer"
 # The baked PLY loads back as a scene mesh (assimp reads PLY).
 expect_exit 1 "a bake has no light" -- "$ILLUM" info room.ply
 expect_stderr "no light" "a bake has no light"
+# ... and info still describes it: the triangles it has, then why it cannot render.
+expect_stdout "^triangles:  [1-9]" "info describes a scene without light"
+expect_stdout "^lights:     0 point/spot/directional, 0 emissive" "info describes a scene without light"
 
 # Bad values: exit 1 with a message naming the option, no output.
 for bad in "--patch-size -1" "--tolerance 0" "--solver foo" "--form-factors bar" "--subdiv 11" \
