@@ -146,9 +146,12 @@ static il_status setup(il_hr_solver *s, il_error *err)
     uint64_t pairs = 0;
     if ((double)n * (double)n * link_bytes > limit) { /* else every pair fits: no need */
 #pragma omp parallel for schedule(dynamic, 16) num_threads(nt) reduction(+ : pairs)
-        for (uint32_t i = 0; i < n; i++)
-            for (uint32_t j = 0; j < n && gathers(s, &s->roots[i]); j++)
+        for (uint32_t i = 0; i < n; i++) {
+            if (!gathers(s, &s->roots[i]))
+                continue;
+            for (uint32_t j = 0; j < n; j++)
                 pairs += j != i && il_hr_facing(s, &s->roots[i], &s->roots[j]);
+        }
     }
     double bytes = (double)pairs * link_bytes;
     if (bytes > limit)
