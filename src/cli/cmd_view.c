@@ -53,6 +53,7 @@ typedef struct view_options {
     cli_env_options env;
     cli_method_options m;            /* each method's own options, as for render */
     cli_run_options run;             /* --spp, --max-depth, --seed, --threads, --quiet */
+    bool has_method;
     cli_camera_options camera;       /* --camera-* and --fov */
 } view_options;
 
@@ -86,6 +87,7 @@ static int parse_options(int argc, char **argv, view_options *o)
                           "(available: " CLI_METHOD_NAMES ")", v);
                 return IL_EXIT_BAD_INPUT;
             }
+            o->has_method = true;
         } else if (!strcmp(a, "--width")) {
             VALUE();
             if (!cli_parse_u32(a, v, 8, 8192, &o->width))
@@ -165,10 +167,25 @@ int cmd_view(int argc, char **argv)
         il_scene_release(scene);
         return rc;
     }
+    /* A JSON scene's "render" block supplies what the command line left
+     * unset, as for `illum render`, except its spp: here that would stop
+     * the refinement.  A size outside the window's range is left out. */
     il_render_settings rs;
     if (il_scene_get_render_settings(scene, &rs)) {
-        if (!o.width) o.width = rs.width;
-        if (!o.height) o.height = rs.height;
+        if (!o.width && rs.width >= 8 && rs.width <= 8192)
+            o.width = rs.width;
+        if (!o.height && rs.height >= 8 && rs.height <= 8192)
+            o.height = rs.height;
+        if (rs.method[0] && !o.has_method && !cli_method_from_name(rs.method, &o.desc.method)) {
+            cli_error("%s: unknown method '%s' in the render settings (available: " CLI_METHOD_NAMES ")",
+                      o.scene, rs.method);
+            il_scene_release(scene);
+            return IL_EXIT_BAD_INPUT;
+        }
+        if (!o.desc.max_depth)
+            o.desc.max_depth = rs.max_depth;
+        if (!o.run.has_seed)
+            o.desc.seed = rs.seed;
     }
     cli_method_options_install(&o.m, &o.desc);
     il_viewer_options vo = {

@@ -105,6 +105,18 @@ mean_close shot.png ref.png 0.05 "view pt vs render pt"
 # the PNG to 8-bit rounding, not just in the mean.
 expect_exit 0 "view pt pixels" -- "$ILLUM" compare shot.png ref.png --max-rmse 0.01
 
+# A JSON scene's "render" block chooses the method (and depth, seed, size)
+# when the command line does not, as for `illum render`; --method wins.
+cat > block.json <<JSON
+{"meshes": [{"file": "$IL_SHARED_DIR/scenes/cornell-box-mcguire/CornellBox-Original.obj"}],
+ "render": {"method": "sppm", "width": 48, "height": 48, "max_depth": 3}}
+JSON
+display "$ILLUM" view block.json --spp 2 --frames 2 -q >out.txt 2>err.txt || fail "view block.json: exit $?"
+expect_stdout "block.json - sppm - .* 2 spp - .* done" "view takes the scene's render method"
+display "$ILLUM" view block.json --method pt --spp 2 --frames 2 -q >out.txt 2>err.txt ||
+    fail "view block.json --method pt: exit $?"
+expect_stdout "block.json - pt - 2 spp" "view --method wins over the scene's"
+
 # The comparison can fail: +1 EV in the viewer doubles the displayed radiance.
 display "$ILLUM" view cornell "${common[@]}" --exposure 1 --frames 2 --screenshot bright.png \
     >out.txt 2>err.txt || fail "view --exposure 1: exit $?"
