@@ -225,7 +225,8 @@ il_status il_lights_build(il_scene *s, il_error *err)
 
     if (count == 0)
         return build_fail(s, il_fail(err, IL_ERR_INVALID, "the scene has no light: add an emissive "
-                                                          "material, a light, or an environment"));
+                                                          "material, a light, or an environment "
+                                                          "(on the command line: --env MAP.hdr)"));
     s->num_lights = count;
 
     /* The selection distribution, proportional to power. */

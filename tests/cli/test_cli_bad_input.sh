@@ -70,6 +70,7 @@ expect_no_file h.png "PLY count beyond the file"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > dark.obj
 expect_exit 1 "scene without lights" -- "$ILLUM" render dark.obj -o e.png
 expect_stderr "light" "scene without lights"
+expect_stderr "no light: .* --env MAP.hdr" "scene without lights: the hint names --env"
 expect_no_file e.png "scene without lights"
 
 # Only NaN triangles: all dropped, so the scene is empty.
