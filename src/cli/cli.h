@@ -271,6 +271,12 @@ typedef struct cli_run_options {
 
 /* As cli_radiosity_option, for the options above, into desc. */
 bool cli_run_option(int argc, char **argv, int *i, il_render_desc *desc, cli_run_options *o, int *rc);
+/* What render and view take from a JSON scene's "render" block when the
+ * command line left it unset (cli_run.c): the method (unless method_given),
+ * max_depth and seed (unless o->has_seed).  An unknown method name is exit 1
+ * with a message naming scene_path. */
+int cli_run_apply_settings(const char *scene_path, const il_render_settings *rs, bool method_given,
+                           const cli_run_options *o, il_render_desc *desc);
 /* --exposure EV of every command that writes display colours: -50 to 50. */
 bool cli_parse_exposure(const char *opt, const char *s, double *out);
 

@@ -47,3 +47,21 @@ bool cli_run_option(int argc, char **argv, int *i, il_render_desc *desc, cli_run
         *rc = IL_EXIT_BAD_INPUT;
     return true;
 }
+
+int cli_run_apply_settings(const char *scene_path, const il_render_settings *rs, bool method_given,
+                           const cli_run_options *o, il_render_desc *desc)
+{
+    il_method method = IL_METHOD_PT;
+    if (rs->method[0] && !cli_method_from_name(rs->method, &method)) {
+        cli_error("%s: unknown method '%s' in the render settings (available: " CLI_METHOD_NAMES ")",
+                  scene_path, rs->method);
+        return IL_EXIT_BAD_INPUT;
+    }
+    if (rs->method[0] && !method_given)
+        desc->method = method;
+    if (desc->max_depth == 0)
+        desc->max_depth = rs->max_depth;
+    if (!o->has_seed)
+        desc->seed = rs->seed;
+    return IL_EXIT_OK;
+}

@@ -331,14 +331,9 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     il_render_settings rs;
     if (!il_scene_get_render_settings(scene, &rs))
         return IL_EXIT_OK;
-    il_method method = IL_METHOD_PT;
-    if (rs.method[0] && !cli_method_from_name(rs.method, &method)) {
-        cli_error("%s: unknown method '%s' in the render settings (available: " CLI_METHOD_NAMES ")",
-                  o->scene, rs.method);
-        return IL_EXIT_BAD_INPUT;
-    }
-    if (rs.method[0] && !o->has_method)
-        o->desc.method = method;
+    int rc = cli_run_apply_settings(o->scene, &rs, o->has_method, &o->run, &o->desc);
+    if (rc != IL_EXIT_OK)
+        return rc;
     if (o->width == 0 && rs.width <= 16384)
         o->width = rs.width;
     if (o->height == 0 && rs.height <= 16384)
@@ -347,10 +342,6 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
         o->desc.spp = rs.spp;
         o->desc.time_limit = rs.time_limit;
     }
-    if (o->desc.max_depth == 0)
-        o->desc.max_depth = rs.max_depth;
-    if (!o->run.has_seed)
-        o->desc.seed = rs.seed;
     return IL_EXIT_OK;
 }
 

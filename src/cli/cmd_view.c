@@ -176,16 +176,10 @@ int cmd_view(int argc, char **argv)
             o.width = rs.width;
         if (!o.height && rs.height >= 8 && rs.height <= 8192)
             o.height = rs.height;
-        if (rs.method[0] && !o.has_method && !cli_method_from_name(rs.method, &o.desc.method)) {
-            cli_error("%s: unknown method '%s' in the render settings (available: " CLI_METHOD_NAMES ")",
-                      o.scene, rs.method);
+        if ((rc = cli_run_apply_settings(o.scene, &rs, o.has_method, &o.run, &o.desc)) != IL_EXIT_OK) {
             il_scene_release(scene);
-            return IL_EXIT_BAD_INPUT;
+            return rc;
         }
-        if (!o.desc.max_depth)
-            o.desc.max_depth = rs.max_depth;
-        if (!o.run.has_seed)
-            o.desc.seed = rs.seed;
     }
     cli_method_options_install(&o.m, &o.desc);
     il_viewer_options vo = {
