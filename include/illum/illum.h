@@ -426,6 +426,37 @@ typedef struct il_radiosity_stats {
 /* Hanrahan, Salzman & Aupperle 1991 as in SPLASH-2's radiosity program.  The
  * epsilons are relative, so rescaling the scene or its lights changes
  * nothing (docs/hierarchical-radiosity.md maps them to SPLASH-2's values). */
+/* What the solve is doing when il_hr_desc.on_step is called. */
+typedef enum il_hr_phase {
+    IL_HR_LINKING = 0,         /* the initial links between facing patches */
+    IL_HR_REFINING,            /* refinement (and its visibility rays) of
+                                  iteration `iterations + 1` */
+    IL_HR_ITERATED             /* an iteration's gather and push-pull are done */
+} il_hr_phase;
+
+/* Handed to il_hr_desc.on_step on the calling thread: about ten times a
+ * second while the initial links are made and while links are refined, and
+ * after every iteration. */
+typedef struct il_hr_progress {
+    il_hr_phase phase;
+    uint32_t iterations;       /* iterations done (refine, gather, push-pull) */
+    uint32_t roots_done;       /* LINKING, REFINING: patches whose links are made
+                                  or refined in this phase so far */
+    uint32_t num_roots;        /* input polygons (quadtree roots) */
+    double energy_change;      /* ITERATED: the relative change of the reflected
+                                  energy, the test against energy_eps (1 after
+                                  the first iteration) */
+    double seconds;            /* since the solve started */
+} il_hr_progress;
+
+/* Return false to stop the solve early.  Asked after an iteration, the
+ * solve ends with it.  Asked during a refinement after the first, the links
+ * not yet refined stay as they are and the iteration's gather and push-pull
+ * complete it.  Asked earlier (linking or the first refinement), no light
+ * has been exchanged yet: the solution is the emission and the direct light
+ * of point, spot, directional lights and sky.  il_hr_stats.stopped says so. */
+typedef bool (*il_hr_step_fn)(const il_hr_progress *progress, void *user);
+
 typedef struct il_hr_desc {
     float bf_eps;              /* refine a link while F * B * V / B_ref exceeds this,
                                   B_ref the scene's mean emitted radiance
@@ -437,6 +468,9 @@ typedef struct il_hr_desc {
                                   falls below; 0 means 0.005 */
     uint32_t vis_rays;         /* visibility rays per link; 0 means 16 */
     uint32_t max_iterations;   /* 0 means 100 */
+    il_hr_step_fn on_step;     /* progress and stop; NULL: none (not called when
+                                  the render is split across processes) */
+    void *on_step_user;
 } il_hr_desc;
 
 typedef struct il_hr_stats {
@@ -452,6 +486,7 @@ typedef struct il_hr_stats {
     double seconds_average;    /* per-vertex averaging and output mesh */
     double seconds_render;
     uint64_t peak_bytes;       /* pools of elements, links and visibility */
+    bool stopped;              /* il_hr_desc.on_step asked the solve to stop */
 } il_hr_stats;
 
 /* ---------------------------------------------------------- photon mapping */

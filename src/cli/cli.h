@@ -80,13 +80,28 @@ bool cli_help_wants_method(int argc, char **argv, const char *method);
 int cli_method_mismatch(const char *command, const cli_method_note *note, const char *label,
                         const char *method);
 
+/* The progress line of a radiosity or hr solve (before the camera pass's
+ * bar), redrawn in place on a terminal at most ten times a second, and the
+ * Ctrl-C flag that ends the solve early (cli_common.c). */
+typedef struct cli_solve_line {
+    bool draw, drawn;
+    double last_draw;                /* solve seconds when it was last drawn */
+    const volatile sig_atomic_t *stop; /* set by Ctrl-C */
+} cli_solve_line;
+
+void cli_solve_line_start(cli_solve_line *l, bool quiet, const volatile sig_atomic_t *stop);
+/* Draws the printf-style text when due (or when `now` is true); returns
+ * false once Ctrl-C asked to stop. */
+bool cli_solve_line_update(cli_solve_line *l, double seconds, bool now, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* Ends the line (a newline after the last drawing). */
+void cli_solve_line_end(cli_solve_line *l);
+
 /* The radiosity options (cli_radiosity.c), shared by render and bake. */
 typedef struct cli_radiosity_options {
     il_radiosity_desc desc;
     cli_method_note note;            /* any radiosity option on the command line */
-    bool draw, drawn;                /* progress line */
-    double last_draw;                /* solve seconds when it was last drawn */
-    const volatile sig_atomic_t *stop; /* set by Ctrl-C: ends the solve early */
+    cli_solve_line line;
 } cli_radiosity_options;
 
 extern const char cli_radiosity_help[];
@@ -107,12 +122,17 @@ void cli_radiosity_summary(const il_radiosity_stats *stats);
 typedef struct cli_hr_options {
     il_hr_desc desc;
     cli_method_note note;            /* any hr option on the command line */
+    cli_solve_line line;
 } cli_hr_options;
 
 extern const char cli_hr_help[];
 /* As cli_radiosity_option, for --bf-eps, --area-eps, --energy-eps,
  * --vis-rays and --max-iterations. */
 bool cli_hr_option(int argc, char **argv, int *i, cli_hr_options *o, int *rc);
+/* Installs desc.on_step: "hr: iteration N, ..." on a terminal unless quiet;
+ * the solve stops early once *stop is set. */
+void cli_hr_install_progress(cli_hr_options *o, bool quiet, const volatile sig_atomic_t *stop);
+void cli_hr_end_progress(cli_hr_options *o);
 /* Adds the "hr" object of --stats (every il_hr_stats field) to `parent`. */
 void cli_hr_stats_json(struct cJSON *parent, const il_hr_stats *stats);
 /* One line on stderr: patches, elements, links, iterations, rays, time per phase. */

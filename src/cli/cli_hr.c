@@ -60,6 +60,37 @@ bool cli_hr_option(int argc, char **argv, int *i, cli_hr_options *o, int *rc)
     return true;
 }
 
+/* "hr: linking patches N / M", "hr: iteration K: refining ...", "hr:
+ * iteration K done, energy change X%" (the test against --energy-eps). */
+static bool on_step(const il_hr_progress *p, void *user)
+{
+    cli_hr_options *o = user;
+    cli_solve_line *l = &o->line;
+    switch (p->phase) {
+    case IL_HR_LINKING:
+        return cli_solve_line_update(l, p->seconds, false, "hr: linking patches %u / %u, %.1fs",
+                                     p->roots_done, p->num_roots, p->seconds);
+    case IL_HR_REFINING:
+        return cli_solve_line_update(l, p->seconds, false,
+                                     "hr: iteration %u: refining patches %u / %u, %.1fs",
+                                     p->iterations + 1, p->roots_done, p->num_roots, p->seconds);
+    case IL_HR_ITERATED:
+    default:
+        return cli_solve_line_update(l, p->seconds, false,
+                                     "hr: iteration %u done, energy change %.3g%%, %.1fs",
+                                     p->iterations, 100.0 * p->energy_change, p->seconds);
+    }
+}
+
+void cli_hr_install_progress(cli_hr_options *o, bool quiet, const volatile sig_atomic_t *stop)
+{
+    cli_solve_line_start(&o->line, quiet, stop);
+    o->desc.on_step = on_step;
+    o->desc.on_step_user = o;
+}
+
+void cli_hr_end_progress(cli_hr_options *o) { cli_solve_line_end(&o->line); }
+
 void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
 {
     cJSON *r = cJSON_AddObjectToObject(parent, "hr");
@@ -75,6 +106,7 @@ void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
     cJSON_AddNumberToObject(r, "seconds_average", s->seconds_average);
     cJSON_AddNumberToObject(r, "seconds_render", s->seconds_render);
     cJSON_AddNumberToObject(r, "peak_bytes", (double)s->peak_bytes);
+    cJSON_AddBoolToObject(r, "stopped", s->stopped);
 }
 
 void cli_hr_summary(const il_hr_stats *s)

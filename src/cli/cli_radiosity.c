@@ -5,7 +5,6 @@
  * stats-file writer both commands use. */
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include <cjson/cJSON.h>
 
@@ -97,36 +96,25 @@ bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *
     return true;
 }
 
-/* "radiosity: step N, unshot X%" redrawn in place on a terminal, at most
- * ten times a second (a solve may take hundreds of thousands of steps). */
+/* "radiosity: step N, unshot X%" (a solve may take hundreds of thousands
+ * of steps). */
 static bool on_step(const il_radiosity_progress *p, void *user)
 {
     cli_radiosity_options *o = user;
-    if (o->draw && (!o->drawn || p->seconds - o->last_draw >= 0.1)) {
-        o->last_draw = p->seconds;
-        fprintf(stderr, "\rradiosity: step %u, unshot %.2f%%, %u patches, %.1fs   ", p->step,
-                100.0 * p->unshot_fraction, p->num_patches, p->seconds);
-        fflush(stderr);
-        o->drawn = true;
-    }
-    return !(o->stop && *o->stop);
+    return cli_solve_line_update(&o->line, p->seconds, false,
+                                 "radiosity: step %u, unshot %.2f%%, %u patches, %.1fs", p->step,
+                                 100.0 * p->unshot_fraction, p->num_patches, p->seconds);
 }
 
 void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
                                     const volatile sig_atomic_t *stop)
 {
-    o->draw = !quiet && isatty(STDERR_FILENO);
-    o->stop = stop;
+    cli_solve_line_start(&o->line, quiet, stop);
     o->desc.on_step = on_step;
     o->desc.on_step_user = o;
 }
 
-void cli_radiosity_end_progress(cli_radiosity_options *o)
-{
-    if (o->drawn)
-        fputc('\n', stderr);
-    o->drawn = false;
-}
+void cli_radiosity_end_progress(cli_radiosity_options *o) { cli_solve_line_end(&o->line); }
 
 void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
 {

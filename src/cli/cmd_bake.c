@@ -184,6 +184,7 @@ int cmd_bake(int argc, char **argv)
         return rc;
 
     cli_radiosity_install_progress(&o.rad, o.run.quiet, &interrupted);
+    cli_hr_install_progress(&o.hr, o.run.quiet, &interrupted);
     o.desc.radiosity = &o.rad.desc;
     o.desc.hr = &o.hr.desc;
     struct sigaction sa = {0}, old_sa;
@@ -194,6 +195,7 @@ int cmd_bake(int argc, char **argv)
     il_status st = il_bake(scene, &o.desc, &bake, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.rad);
+    cli_hr_end_progress(&o.hr);
     if (st == IL_OK)
         st = il_bake_write(bake, o.output, &o.write, &err);
     if (st != IL_OK) {

@@ -448,6 +448,8 @@ int cmd_render(int argc, char **argv)
         /* The solve draws its own line and ends early on Ctrl-C; the camera
          * pass after it draws the usual bar. */
         cli_radiosity_install_progress(&o.m.rad, o.run.quiet, &interrupted);
+    } else if (o.desc.method == IL_METHOD_HR) {
+        cli_hr_install_progress(&o.m.hr, o.run.quiet, &interrupted);
     }
     cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
@@ -462,6 +464,7 @@ int cmd_render(int argc, char **argv)
                                       : il_render(scene, film, &o.desc, &rs, &err);
     sigaction(SIGINT, &old_sa, NULL);
     cli_radiosity_end_progress(&o.m.rad);
+    cli_hr_end_progress(&o.m.hr);
     if (ps.drawn)
         fputc('\n', stderr);
     if (cli_mpi_rank() > 0) { /* rank 0 writes the outputs and reports errors */
@@ -517,6 +520,11 @@ int cmd_render(int argc, char **argv)
             cli_error("interrupted: the radiosity solve stopped at %.3g%% unshot; the image of "
                       "that solution is written",
                       100.0 * rs.radiosity.unshot_fraction);
+        else if (o.desc.method == IL_METHOD_HR && rs.hr.stopped)
+            cli_error("interrupted: the hr solve stopped after %u iteration%s%s; the image of "
+                      "that solution is written",
+                      rs.hr.iterations, rs.hr.iterations == 1 ? "" : "s",
+                      rs.hr.iterations == 0 ? " (no light exchanged between surfaces yet)" : "");
         else
             cli_error("interrupted after %u spp; the image so far is written", rs.spp);
         return IL_EXIT_INTERRUPTED;

@@ -98,4 +98,40 @@ expect_exit 2 "bake: hr option with radiosity" -- "$ILLUM" bake office --vis-ray
 expect_no_file bad.ply "bake: hr option with radiosity"
 expect_exit 2 "bake: radiosity option with hr" -- "$ILLUM" bake office --method hr --subdiv 1 -q -o bad.ply
 expect_no_file bad.ply "bake: radiosity option with hr"
+# On a terminal the solve draws its progress line (script(1) gives it one).
+if command -v script >/dev/null 2>&1; then
+    script -qec "'$ILLUM' render office --method hr --vis-rays 4 --width 8 --height 8 --spp 1 -o tty.exr" \
+        /dev/null >tty.txt 2>&1
+    checks=$((checks + 1))
+    grep -q "hr: linking patches" tty.txt || { fail "no hr progress line on a terminal"; cat tty.txt >&2; }
+fi
+
+# Ctrl-C during the solve (here a first refinement that would run for
+# minutes): the solve stops, the image of its solution is written and the
+# exit status is 130; a bake likewise.  Ctrl-C is sent until the process
+# ends: a signal that comes before illum installs its handler is ignored
+# (a background job ignores SIGINT).
+interrupt() { # interrupt NAME COMMAND...: runs it in the background, Ctrl-C, status in $got
+    what=$1; shift
+    "$@" 2>err.txt &
+    pid=$!
+    for _ in $(seq 1 600); do
+        sleep 0.5
+        kill -INT "$pid" 2>/dev/null || break
+    done
+    wait "$pid"
+    got=$?
+    checks=$((checks + 1))
+    [ "$got" = 130 ] || { fail "$what: exit $got, expected 130"; cat err.txt >&2; }
+}
+long="--method hr --vis-rays 4096 --bf-eps 1e-4"
+interrupt "interrupted hr render" "$ILLUM" render cornell $long --width 16 --height 16 --spp 1 \
+    -o stopped.pfm --stats stopped.json
+expect_file stopped.pfm "interrupted hr render"
+expect_stderr "the hr solve stopped after 0 iterations" "interrupted hr render"
+checks=$((checks + 1))
+grep -q '"stopped":[[:space:]]*true' stopped.json || fail "interrupted hr render: stats lack stopped"
+interrupt "interrupted hr bake" "$ILLUM" bake cornell $long -o stopped.ply
+expect_file stopped.ply "interrupted hr bake"
+expect_stderr "interrupted" "interrupted hr bake"
 finish

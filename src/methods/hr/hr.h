@@ -63,6 +63,8 @@ typedef struct il_hr_settings {
      * iterations.  NULL from il_hr_settings_resolve. */
     bool (*on_iteration)(const struct il_hr_solver *solver, void *user);
     void *on_iteration_user;
+    il_hr_step_fn on_step;     /* il_hr_desc.on_step (NULL when split across processes) */
+    void *on_step_user;
 } il_hr_settings;
 
 /* Resolves defaults and checks ranges (clear messages, IL_ERR_INVALID). */
@@ -153,7 +155,37 @@ typedef struct il_hr_solver {
     struct il_hr_link_table *table; /* split across processes: the links this
                                        refinement makes, computed by all (hr_distrib.c) */
     il_hr_stats stats;
+    struct il_hr_watch *watch;      /* progress and the stop request (hr_progress.c) */
 } il_hr_solver;
+
+/* ------------------------------------------------------------ progress */
+
+/* il_hr_desc.on_step's state during a solve: it is called from thread 0
+ * alone (the caller's), so only `stop` and `roots_done` are shared. */
+typedef struct il_hr_watch {
+    atomic_bool stop;               /* on_step returned false */
+    atomic_uint roots_done;         /* in the current phase */
+    il_hr_phase phase;
+    uint32_t iterations;
+    uint32_t polls;                 /* il_hr_watch_poll calls on thread 0 */
+    double t0, next_report;         /* omp_get_wtime seconds */
+} il_hr_watch;
+
+/* Starts watching: s->watch = w, phase LINKING. */
+void il_hr_watch_start(il_hr_solver *s, il_hr_watch *w);
+/* A new phase: roots_done back to 0; reports it at once. */
+void il_hr_watch_phase(const il_hr_solver *s, il_hr_phase phase, uint32_t iterations,
+                       double energy_change);
+/* A root's links made or refined. */
+void il_hr_watch_root_done(const il_hr_solver *s);
+/* On thread 0, at most ten times a second: reports the phase's progress.
+ * Cheap enough to call for every link. */
+void il_hr_watch_poll(const il_hr_solver *s);
+/* Whether on_step asked to stop. */
+static inline bool il_hr_stopping(const il_hr_solver *s)
+{
+    return s->watch && atomic_load_explicit(&s->watch->stop, memory_order_relaxed);
+}
 
 /* Roots from the mesh, initial links, iterations (refine, gather, push-pull)
  * until the energy converges.  On failure the solver is freed. */

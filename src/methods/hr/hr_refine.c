@@ -38,11 +38,16 @@ static bool splits(const il_hr_solver *s, const il_hr_elem *r, const il_hr_link 
 static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, il_hr_link *l,
                         bool parent_visible, uint32_t at)
 {
+    /* After a stop (il_hr_step_fn) no link is split; each still needs its
+     * visibility to be gathered, except in the first refinement, after
+     * which nothing is gathered. */
+    bool stopping = il_hr_stopping(s);
     /* Split across processes, the table has it (the same bits). */
-    if (l->vis < 0.0f &&
+    if (l->vis < 0.0f && !(stopping && s->stats.iterations == 0) &&
         !(s->table && il_hr_distrib_take_old(s, pool, r, l, parent_visible, &at)))
         il_hr_link_visibility(s, pool, r, l, parent_visible, splits(s, r, l, 1.0f));
-    if (!splits(s, r, l, l->vis_bound) || pool->failed) {
+    il_hr_watch_poll(s);
+    if (stopping || !splits(s, r, l, l->vis_bound) || pool->failed) {
         il_hr_link_append(r, l);
         return;
     }
@@ -86,6 +91,9 @@ void il_hr_refine_tree(const il_hr_solver *s, il_hr_elem *e)
     /* The pool of the thread running this task (tasks are tied: the
      * thread does not change while one runs). */
     il_hr_pool *pool = &s->pools[omp_get_thread_num()];
+    il_hr_watch_poll(s);
+    if (il_hr_stopping(s)) /* e's links stay as they are (refine_link) */
+        return;
     il_hr_link *l = e->links;
     e->links = e->links_tail = NULL;
     e->num_links = 0;

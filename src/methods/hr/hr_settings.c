@@ -58,6 +58,9 @@ il_status il_hr_settings_resolve(const il_render_desc *desc, il_hr_settings *out
     out->seed = desc->seed;
     out->on_iteration = NULL;
     out->on_iteration_user = NULL;
+    /* A process that stopped alone would leave the others waiting. */
+    out->on_step = out->distrib ? NULL : d->on_step;
+    out->on_step_user = out->distrib ? NULL : d->on_step_user;
     out->threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
     out->link_memory_limit = UINT64_MAX;
 #if defined(_SC_PHYS_PAGES) && defined(_SC_PAGESIZE)

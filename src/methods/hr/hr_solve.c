@@ -147,7 +147,8 @@ static il_status setup(il_hr_solver *s, il_error *err)
     if ((double)n * (double)n * link_bytes > limit) { /* else every pair fits: no need */
 #pragma omp parallel for schedule(dynamic, 16) num_threads(nt) reduction(+ : pairs)
         for (uint32_t i = 0; i < n; i++) {
-            if (!gathers(s, &s->roots[i]))
+            il_hr_watch_poll(s);
+            if (!gathers(s, &s->roots[i]) || il_hr_stopping(s))
                 continue;
             for (uint32_t j = 0; j < n; j++)
                 pairs += j != i && il_hr_facing(s, &s->roots[i], &s->roots[j]);
@@ -165,7 +166,9 @@ static il_status setup(il_hr_solver *s, il_error *err)
     for (uint32_t i = 0; i < n; i++) {
         il_hr_pool *pool = &s->pools[omp_get_thread_num()];
         il_hr_elem *r = &s->roots[i];
-        if (!gathers(s, r))
+        il_hr_watch_poll(s);
+        il_hr_watch_root_done(s);
+        if (!gathers(s, r) || il_hr_stopping(s))
             continue;
         for (uint32_t j = 0; j < n && !pool->failed; j++) {
             if (j == i || !il_hr_facing(s, r, &s->roots[j]))
@@ -196,6 +199,9 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     il_patch_direct_kinds(scene, &s->delta_lights, &s->sky);
     il_hr_stats *st = &s->stats;
     st->patches = s->num_roots;
+    il_hr_watch watch;
+    il_hr_watch_start(s, &watch);
+    il_hr_watch_phase(s, IL_HR_LINKING, 0, 0.0);
 
     double t0 = omp_get_wtime();
     il_status status = setup(s, err);
@@ -207,7 +213,10 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     int nt = set->threads;
     uint32_t n = s->num_roots;
     double prev = total_energy(s);
-    for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f; it++) {
+    bool converged = false;
+    for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f && !il_hr_stopping(s);
+         it++) {
+        il_hr_watch_phase(s, IL_HR_REFINING, it, 0.0);
         double t1 = omp_get_wtime();
         /* Split across processes: this refinement's new links computed
          * by shares and gathered first (hr_distrib.c). */
@@ -224,7 +233,10 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         for (uint32_t i = 0; i < n; i++) {
             il_hr_elem *root = &s->roots[s->order[i]];
 #pragma omp task firstprivate(root)
-            il_hr_refine_tree(s, root);
+            {
+                il_hr_refine_tree(s, root);
+                il_hr_watch_root_done(s);
+            }
         }
         double t2 = omp_get_wtime();
         st->seconds_refine += t2 - t1;
@@ -232,6 +244,10 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
             il_hr_solver_free(s);
             return il_fail(err, IL_ERR_MEMORY, "hr: out of memory while refining links");
         }
+        /* Stopped in the first refinement: some links have no visibility
+         * yet, so none is gathered (il_hr_step_fn in illum.h). */
+        if (it == 0 && il_hr_stopping(s))
+            break;
 #pragma omp parallel num_threads(nt)
         {
 #pragma omp for schedule(dynamic, 1)
@@ -244,9 +260,11 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         st->seconds_gather += omp_get_wtime() - t2;
         st->iterations = it + 1;
         double energy = total_energy(s);
-        bool done = it > 0 && fabs(energy - prev) <= set->energy_eps * fabs(energy);
+        double change = it == 0 ? 1.0 : energy != 0.0 ? fabs(energy - prev) / fabs(energy) : 0.0;
+        converged = it > 0 && fabs(energy - prev) <= set->energy_eps * fabs(energy);
         prev = energy;
-        if (done)
+        il_hr_watch_phase(s, IL_HR_ITERATED, it + 1, change);
+        if (converged)
             break;
         if (set->on_iteration && !set->on_iteration(s, set->on_iteration_user))
             break;
@@ -260,6 +278,8 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     for (uint32_t i = 0; i < n; i++)
         count_tree(&s->roots[i], &elems, &leaves, &links);
     st->elements = elems;
+    st->stopped = il_hr_stopping(s) && !converged && st->iterations < set->max_iterations;
+    s->watch = NULL; /* it lived in this frame */
     st->leaves = leaves;
     st->links = links;
     st->peak_bytes = (uint64_t)n * (sizeof *s->roots + sizeof *s->order);
