@@ -80,6 +80,14 @@ bool cli_help_wants_method(int argc, char **argv, const char *method);
 int cli_method_mismatch(const char *command, const cli_method_note *note, const char *label,
                         const char *method);
 
+/* Ctrl-C during render and bake (cli_interrupt.c): the first sets
+ * cli_interrupted (the work stops early and its result is written) and says
+ * that a second one quits at once, without output (SIGINT's default action
+ * is restored). */
+extern volatile sig_atomic_t cli_interrupted;
+void cli_interrupt_catch(bool quiet, struct sigaction *old);
+void cli_interrupt_release(const struct sigaction *old);
+
 /* The progress line of a radiosity or hr solve (before the camera pass's
  * bar), redrawn in place on a terminal at most ten times a second, and the
  * Ctrl-C flag that ends the solve early (cli_common.c). */

@@ -42,13 +42,6 @@ typedef struct bake_options {
     cli_env_options env;             /* --env and its settings */
 } bake_options;
 
-static volatile sig_atomic_t interrupted = 0;
-static void on_sigint(int sig)
-{
-    (void)sig;
-    interrupted = 1;
-}
-
 static double now_seconds(void)
 {
     struct timespec ts;
@@ -159,7 +152,7 @@ static bool write_stats(const bake_options *o, const il_bake_result *b, double w
     cJSON_AddNumberToObject(j, "threads", o->desc.threads);
     cJSON_AddNumberToObject(j, "exposure", o->write.exposure);
     cJSON_AddNumberToObject(j, "total_seconds", wall);
-    cJSON_AddBoolToObject(j, "interrupted", interrupted != 0);
+    cJSON_AddBoolToObject(j, "interrupted", cli_interrupted != 0);
     if (o->desc.method == IL_METHOD_HR)
         cli_hr_stats_json(j, &b->stats.hr);
     else
@@ -183,17 +176,16 @@ int cmd_bake(int argc, char **argv)
     if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
 
-    cli_radiosity_install_progress(&o.rad, o.run.quiet, &interrupted);
-    cli_hr_install_progress(&o.hr, o.run.quiet, &interrupted);
+    cli_radiosity_install_progress(&o.rad, o.run.quiet, &cli_interrupted);
+    cli_hr_install_progress(&o.hr, o.run.quiet, &cli_interrupted);
     o.desc.radiosity = &o.rad.desc;
     o.desc.hr = &o.hr.desc;
-    struct sigaction sa = {0}, old_sa;
-    sa.sa_handler = on_sigint;
-    sigaction(SIGINT, &sa, &old_sa);
+    struct sigaction old_sa;
+    cli_interrupt_catch(o.run.quiet, &old_sa);
     il_error err = {0};
     il_bake_result *bake = NULL;
     il_status st = il_bake(scene, &o.desc, &bake, &err);
-    sigaction(SIGINT, &old_sa, NULL);
+    cli_interrupt_release(&old_sa);
     cli_radiosity_end_progress(&o.rad);
     cli_hr_end_progress(&o.hr);
     if (st == IL_OK)
@@ -215,7 +207,7 @@ int cmd_bake(int argc, char **argv)
         rc = IL_EXIT_BAD_INPUT;
     il_bake_release(bake);
     il_scene_release(scene);
-    if (rc == IL_EXIT_OK && interrupted) {
+    if (rc == IL_EXIT_OK && cli_interrupted) {
         cli_error("interrupted: the solve stopped early; the bake so far is written");
         return IL_EXIT_INTERRUPTED;
     }

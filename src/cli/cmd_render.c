@@ -80,13 +80,6 @@ typedef struct render_options {
     cli_env_options env;             /* --env and its settings */
 } render_options;
 
-static volatile sig_atomic_t interrupted = 0;
-static void on_sigint(int sig)
-{
-    (void)sig;
-    interrupted = 1;
-}
-
 static double now_seconds(void)
 {
     struct timespec ts;
@@ -146,7 +139,7 @@ static bool on_progress(const il_render_progress *p, void *user)
         fflush(stderr);
         ps->drawn = true;
     }
-    return !interrupted;
+    return !cli_interrupted;
 }
 
 static bool known_image_extension(const char *path)
@@ -367,7 +360,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
     cJSON_AddNumberToObject(j, "rays_per_second", (double)rs->rays / secs);
     cJSON_AddNumberToObject(j, "samples_per_second",
                             (double)o->width * o->height * rs->spp / secs);
-    cJSON_AddBoolToObject(j, "interrupted", interrupted != 0);
+    cJSON_AddBoolToObject(j, "interrupted", cli_interrupted != 0);
     cJSON *outs = cJSON_AddArrayToObject(j, "outputs");
     for (int i = 0; i < o->num_outputs; i++)
         cJSON_AddItemToArray(outs, cJSON_CreateString(o->outputs[i]));
@@ -447,22 +440,21 @@ int cmd_render(int argc, char **argv)
     if (o.desc.method == IL_METHOD_RADIOSITY) {
         /* The solve draws its own line and ends early on Ctrl-C; the camera
          * pass after it draws the usual bar. */
-        cli_radiosity_install_progress(&o.m.rad, o.run.quiet, &interrupted);
+        cli_radiosity_install_progress(&o.m.rad, o.run.quiet, &cli_interrupted);
     } else if (o.desc.method == IL_METHOD_HR) {
-        cli_hr_install_progress(&o.m.hr, o.run.quiet, &interrupted);
+        cli_hr_install_progress(&o.m.hr, o.run.quiet, &cli_interrupted);
     }
     cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
-    struct sigaction sa = {0}, old_sa;
-    sa.sa_handler = on_sigint;
-    sigaction(SIGINT, &sa, &old_sa);
+    struct sigaction old_sa;
+    cli_interrupt_catch(o.run.quiet, &old_sa);
 
     il_render_stats rs = {0};
     il_image cuda_img = {0};
     il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &cuda_img, &rs, &err)
                    : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &o.mpi, &rs, !o.run.quiet, &err)
                                       : il_render(scene, film, &o.desc, &rs, &err);
-    sigaction(SIGINT, &old_sa, NULL);
+    cli_interrupt_release(&old_sa);
     cli_radiosity_end_progress(&o.m.rad);
     cli_hr_end_progress(&o.m.hr);
     if (ps.drawn)
@@ -515,7 +507,7 @@ int cmd_render(int argc, char **argv)
         rc = IL_EXIT_BAD_INPUT;
     il_film_release(film);
     il_scene_release(scene);
-    if (rc == IL_EXIT_OK && interrupted) {
+    if (rc == IL_EXIT_OK && cli_interrupted) {
         if (o.desc.method == IL_METHOD_RADIOSITY)
             cli_error("interrupted: the radiosity solve stopped at %.3g%% unshot; the image of "
                       "that solution is written",

@@ -30,7 +30,8 @@ static const char *usage =
     "\n"
     "exit status: 0 success, 1 bad input (scene, file, option value), 2 usage error,\n"
     "             3 runtime failure, 4 compare: images differ more than allowed,\n"
-    "             130 interrupted (the image rendered so far is written)\n";
+    "             130 interrupted (the image rendered so far is written; a second\n"
+    "                 Ctrl-C quits at once and writes nothing)\n";
 
 int main(int argc, char **argv)
 {

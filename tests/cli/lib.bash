@@ -50,3 +50,17 @@ finish() {
     [ "$failures" = 0 ]
     exit $?
 }
+
+# wait_for_sigint PID: waits (at most 10 minutes) until the process catches
+# SIGINT, so that a Ctrl-C sent next reaches illum's handler: a background
+# job starts with SIGINT ignored, and a signal sent before illum installs its
+# handler would be lost.  Reads SigCgt (bit 1: SIGINT) in /proc/PID/status.
+wait_for_sigint() {
+    for _ in $(seq 1 6000); do
+        mask=$(sed -n 's/^SigCgt:[[:space:]]*//p' "/proc/$1/status" 2>/dev/null) || return 1
+        [ -n "$mask" ] || return 1
+        [ $(( 0x$mask & 2 )) != 0 ] && return 0
+        sleep 0.1
+    done
+    return 1
+}

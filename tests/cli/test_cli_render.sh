@@ -51,7 +51,7 @@ expect_file timed.exr "time limit"
 # Ctrl-C: the render stops after the current pass, writes what it has and exits 130.
 "$ILLUM" render cornell --width 64 --height 64 --time 60 -q -o interrupted.pfm --stats interrupted.json 2>err.txt &
 pid=$!
-sleep 2
+wait_for_sigint "$pid" && sleep 1
 kill -INT "$pid"
 wait "$pid"
 got=$?
