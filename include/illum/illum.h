@@ -498,6 +498,27 @@ typedef enum il_photon_lookup { IL_PHOTON_KDTREE = 0, IL_PHOTON_GRID } il_photon
  * Epanechnikov; both normalised so that a uniform density is unbiased. */
 typedef enum il_photon_filter { IL_PHOTON_CONE = 0, IL_PHOTON_EPANECHNIKOV } il_photon_filter;
 
+/* What IL_METHOD_PHOTON's set-up is doing when il_photon_desc.on_step is called. */
+typedef enum il_photon_phase {
+    IL_PHOTON_TRACING = 0,     /* photons leave the lights and are stored */
+    IL_PHOTON_IRRADIANCE       /* irradiance precomputed at every 4th global photon */
+} il_photon_phase;
+
+typedef struct il_photon_progress {
+    il_photon_phase phase;
+    uint64_t done, total;      /* photons traced, or irradiance points computed, so far */
+    double seconds;            /* since the set-up started */
+} il_photon_progress;
+
+/* Called on the calling thread during IL_METHOD_PHOTON's set-up, every few
+ * tens of thousands of photons or points.  Return false to stop it early:
+ * tracing ends with the photons traced so far (the first `done` indices,
+ * the same photons as asking for that many, with their power scaled to
+ * their number), and the precomputed irradiance is left out (every
+ * Lambertian hit makes a full estimate, as with no_precomputed_irradiance).
+ * The camera pass follows; il_photon_stats.stopped says so. */
+typedef bool (*il_photon_step_fn)(const il_photon_progress *progress, void *user);
+
 /* Jensen's two-pass photon mapping (IL_METHOD_PHOTON) and Hachisuka &
  * Jensen's stochastic progressive photon mapping (IL_METHOD_SPPM).  Radii
  * are fractions of the scene's bounding-box diagonal, so a scene in
@@ -526,6 +547,11 @@ typedef struct il_photon_desc {
      * floats per photon, valid during the call only. */
     void (*on_photons)(const float *positions, size_t count, int which, void *user);
     void *on_photons_user;
+    /* Optional, PHOTON: progress of the set-up, and a stop (il_photon_step_fn);
+     * not called when the render is split across processes.  SPPM stops
+     * between passes through il_render_desc.progress. */
+    il_photon_step_fn on_step;
+    void *on_step_user;
 } il_photon_desc;
 
 typedef struct il_photon_stats {
@@ -540,6 +566,7 @@ typedef struct il_photon_stats {
     double seconds_render;     /* camera pass (estimates, final gather) */
     uint64_t map_bytes;        /* the photon maps and their search structures */
     uint32_t bytes_per_photon; /* one stored photon */
+    bool stopped;              /* PHOTON: on_step stopped the set-up early */
 } il_photon_stats;
 
 /* ------------------------------------------------- many-light environment */

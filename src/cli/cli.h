@@ -152,6 +152,7 @@ typedef struct cli_photon_options {
     cli_method_note note;            /* an option of both photon and sppm */
     cli_method_note photon_only;     /* --k, --photon-filter, --final-gather */
     cli_method_note sppm_only;       /* --alpha, --initial-radius */
+    cli_solve_line line;             /* photon's set-up */
 } cli_photon_options;
 
 extern const char cli_photon_help[];
@@ -159,6 +160,11 @@ extern const char cli_photon_help[];
 bool cli_photon_option(int argc, char **argv, int *i, cli_photon_options *o, int *rc);
 /* The usage error when an option given does not belong to `method`. */
 int cli_photon_check_method(const char *command, const cli_photon_options *o, il_method method);
+/* Installs desc.on_step (--method photon's set-up): "photon: tracing N / M"
+ * on a terminal unless quiet; the set-up stops early once *stop is set. */
+void cli_photon_install_progress(cli_photon_options *o, bool quiet,
+                                 const volatile sig_atomic_t *stop);
+void cli_photon_end_progress(cli_photon_options *o);
 /* Adds the "photon" object of --stats (every il_photon_stats field) to `parent`. */
 void cli_photon_stats_json(struct cJSON *parent, const il_photon_stats *stats);
 /* One line on stderr: photons, rate, maps, time per phase. */

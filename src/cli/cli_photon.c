@@ -134,6 +134,27 @@ int cli_photon_check_method(const char *command, const cli_photon_options *o, il
     return IL_EXIT_OK;
 }
 
+/* "photon: tracing N / M photons", then "photon: irradiance N / M points". */
+static bool on_step(const il_photon_progress *p, void *user)
+{
+    cli_photon_options *o = user;
+    const char *what = p->phase == IL_PHOTON_TRACING ? "tracing" : "irradiance at";
+    const char *unit = p->phase == IL_PHOTON_TRACING ? "photons" : "points";
+    return cli_solve_line_update(&o->line, p->seconds, false, "photon: %s %llu / %llu %s, %.1fs",
+                                 what, (unsigned long long)p->done, (unsigned long long)p->total,
+                                 unit, p->seconds);
+}
+
+void cli_photon_install_progress(cli_photon_options *o, bool quiet,
+                                 const volatile sig_atomic_t *stop)
+{
+    cli_solve_line_start(&o->line, quiet, stop);
+    o->desc.on_step = on_step;
+    o->desc.on_step_user = o;
+}
+
+void cli_photon_end_progress(cli_photon_options *o) { cli_solve_line_end(&o->line); }
+
 void cli_photon_stats_json(cJSON *parent, const il_photon_stats *s)
 {
     cJSON *r = cJSON_AddObjectToObject(parent, "photon");
@@ -150,6 +171,7 @@ void cli_photon_stats_json(cJSON *parent, const il_photon_stats *s)
                             s->seconds_trace > 0.0 ? (double)s->emitted / s->seconds_trace : 0.0);
     cJSON_AddNumberToObject(r, "map_bytes", (double)s->map_bytes);
     cJSON_AddNumberToObject(r, "bytes_per_photon", s->bytes_per_photon);
+    cJSON_AddBoolToObject(r, "stopped", s->stopped);
 }
 
 void cli_photon_summary(il_method method, const il_photon_stats *s)

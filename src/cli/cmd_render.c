@@ -443,6 +443,8 @@ int cmd_render(int argc, char **argv)
         cli_radiosity_install_progress(&o.m.rad, o.run.quiet, &cli_interrupted);
     } else if (o.desc.method == IL_METHOD_HR) {
         cli_hr_install_progress(&o.m.hr, o.run.quiet, &cli_interrupted);
+    } else if (o.desc.method == IL_METHOD_PHOTON) {
+        cli_photon_install_progress(&o.m.photon, o.run.quiet, &cli_interrupted);
     }
     cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
@@ -457,6 +459,7 @@ int cmd_render(int argc, char **argv)
     cli_interrupt_release(&old_sa);
     cli_radiosity_end_progress(&o.m.rad);
     cli_hr_end_progress(&o.m.hr);
+    cli_photon_end_progress(&o.m.photon);
     if (ps.drawn)
         fputc('\n', stderr);
     if (cli_mpi_rank() > 0) { /* rank 0 writes the outputs and reports errors */
@@ -517,6 +520,10 @@ int cmd_render(int argc, char **argv)
                       "that solution is written",
                       rs.hr.iterations, rs.hr.iterations == 1 ? "" : "s",
                       rs.hr.iterations == 0 ? " (no light exchanged between surfaces yet)" : "");
+        else if (o.desc.method == IL_METHOD_PHOTON && rs.photon.stopped)
+            cli_error("interrupted: photon mapping's set-up stopped after %llu photons; the image "
+                      "with those is written",
+                      (unsigned long long)rs.photon.emitted);
         else
             cli_error("interrupted after %u spp; the image so far is written", rs.spp);
         return IL_EXIT_INTERRUPTED;

@@ -62,6 +62,19 @@ expect_stderr "interrupted" "interrupted render"
 checks=$((checks + 1))
 grep -q '"interrupted":[[:space:]]*true' interrupted.json || fail "stats of the interrupted render"
 
+# A second Ctrl-C quits at once, writing nothing: the way out of a set-up
+# that cannot stop part-way (here a Linespace injection of 2e9 light paths).
+"$ILLUM" render cornell --method linespace --inject-rays 2000000000 --width 16 --height 16 \
+    --spp 1 -o never.pfm 2>err.txt &
+pid=$!
+wait_for_sigint "$pid" && sleep 0.5 && kill -INT "$pid" && sleep 0.5 && kill -INT "$pid"
+wait "$pid"
+got=$?
+checks=$((checks + 1))
+[ "$got" = 130 ] || { fail "second Ctrl-C: exit $got, expected 130"; cat err.txt >&2; }
+expect_no_file never.pfm "second Ctrl-C"
+expect_stderr "Ctrl-C again quits at once" "first Ctrl-C"
+
 # --write-every: the running image is on disk while the render goes on.
 "$ILLUM" render cornell --width 64 --height 64 --time 20 --write-every 0.2 -q \
     -o running.pfm -o running.png &

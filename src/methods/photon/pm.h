@@ -206,6 +206,18 @@ typedef void (*il_pm_deposit_fn)(void *user, const il_pm_deposit *d);
 uint64_t il_pm_trace_photon(const il_scene *scene, uint64_t seed, uint64_t index,
                             uint32_t max_depth, il_pm_deposit_fn deposit, void *user);
 
+/* il_photon_desc.on_step during PHOTON's set-up (pm_watch.c). */
+typedef struct il_pm_watch {
+    il_photon_step_fn fn;      /* NULL: no reports, no stop */
+    void *user;
+    double t0;                 /* omp_get_wtime when the set-up started */
+    bool stopped;              /* fn returned false */
+} il_pm_watch;
+
+/* Reports progress to w->fn (w may be NULL); returns false, and sets
+ * w->stopped, once it asked to stop.  Calling thread only. */
+bool il_pm_watch_report(il_pm_watch *w, il_photon_phase phase, uint64_t done, uint64_t total);
+
 typedef struct il_pm_trace_desc {
     uint64_t first;            /* photon indices first .. first+count-1 */
     uint64_t count;
@@ -214,12 +226,16 @@ typedef struct il_pm_trace_desc {
     int threads;               /* 0: all cores */
     bool split;                /* true: caustic photons to *caustic, the rest to
                                   *global; false: all to *global (SPPM) */
+    il_pm_watch *watch;        /* reports after every round of chunks, and may stop
+                                  the tracing there; NULL: none */
 } il_pm_trace_desc;
 
 typedef struct il_pm_photons {
     il_photon *global;  size_t num_global;
     il_photon *caustic; size_t num_caustic;
     uint64_t rays;
+    uint64_t emitted;   /* photons traced: desc->count unless the watch stopped it,
+                           then the first `emitted` indices */
 } il_pm_photons;
 
 /* Traces the photons in parallel; the arrays are the same, in the same
@@ -276,8 +292,11 @@ il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
 /* il_pm_irradiance_build with the points split across the processes of d
  * (contiguous ranges) and exchanged: the same map->irr on every process,
  * byte for byte, as il_pm_irradiance_build's.  d off: il_pm_irradiance_build. */
+/* A watch (NULL: none) hears of the points computed and may stop the
+ * build: map->irr is then left empty (full estimates are made instead). */
 il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
-                                       int threads, const il_distrib *d, il_error *err);
+                                       int threads, const il_distrib *d, il_pm_watch *watch,
+                                       il_error *err);
 
 il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
                        il_render_stats *stats, il_error *err);

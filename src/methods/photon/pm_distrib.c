@@ -98,6 +98,7 @@ il_status il_pm_trace_split(const il_scene *scene, const il_pm_trace_desc *desc,
         out->caustic = c;
         out->num_caustic = nc;
         out->rays = local.rays; /* this process's */
+        out->emitted = desc->count; /* desc->watch is for one process alone (pm_render.c) */
     } else {
         free(g);
         free(c);

@@ -15,30 +15,43 @@
 #include "methods/distrib.h"
 #include "methods/photon/pm_internal.h"
 
-/* The points [lo, hi) of the map's every stride-th photon into irr[0..hi-lo). */
+/* Points computed between two reports to a watch. */
+#define POINTS_PER_ROUND 65536
+
+/* The points [lo, hi) of the map's every stride-th photon into irr[0..hi-lo),
+ * a round at a time; *stopped when the watch stopped it between rounds. */
 static il_status estimate_points(const il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
-                                 int threads, size_t lo, size_t hi, il_photon *irr, il_error *err)
+                                 int threads, size_t lo, size_t hi, il_photon *irr,
+                                 il_pm_watch *watch, bool *stopped, il_error *err)
 {
     atomic_int oom = 0;
-    /* Each point's estimate depends only on the map, so the values are the
-     * same for any thread count and schedule. */
-#pragma omp parallel num_threads(threads) if (hi - lo >= 1024)
-    {
-        il_pm_scratch scratch = {0};
-#pragma omp for schedule(dynamic, 256)
-        for (int64_t i = (int64_t)lo; i < (int64_t)hi; i++) {
-            const il_photon *ph = &map->photons[(size_t)i * stride];
-            il_vec3 n = il_photon_normal(ph);
-            il_vec3 E = v3s(0.0f);
-            if (il_pm_irradiance_estimate(map, q, il_photon_pos(ph), n, &scratch, &E, NULL) != IL_OK)
-                atomic_store(&oom, 1);
-            il_photon *o = &irr[(size_t)i - lo];
-            memcpy(o->p, ph->p, sizeof o->p);
-            o->power = il_rgbe_pack(E);
-            o->dir = 0;
-            o->normal = (uint16_t)(ph->normal & IL_PM_NORMAL_MASK);
+    *stopped = false;
+    for (size_t r0 = lo; r0 < hi && !atomic_load(&oom); r0 += POINTS_PER_ROUND) {
+        if (!il_pm_watch_report(watch, IL_PHOTON_IRRADIANCE, r0 - lo, hi - lo)) {
+            *stopped = true;
+            break;
         }
-        il_pm_scratch_free(&scratch);
+        size_t r1 = hi - r0 < POINTS_PER_ROUND ? hi : r0 + POINTS_PER_ROUND;
+        /* Each point's estimate depends only on the map, so the values are the
+         * same for any thread count and schedule. */
+#pragma omp parallel num_threads(threads) if (r1 - r0 >= 1024)
+        {
+            il_pm_scratch scratch = {0};
+#pragma omp for schedule(dynamic, 256)
+            for (int64_t i = (int64_t)r0; i < (int64_t)r1; i++) {
+                const il_photon *ph = &map->photons[(size_t)i * stride];
+                il_vec3 n = il_photon_normal(ph);
+                il_vec3 E = v3s(0.0f);
+                if (il_pm_irradiance_estimate(map, q, il_photon_pos(ph), n, &scratch, &E, NULL) != IL_OK)
+                    atomic_store(&oom, 1);
+                il_photon *o = &irr[(size_t)i - lo];
+                memcpy(o->p, ph->p, sizeof o->p);
+                o->power = il_rgbe_pack(E);
+                o->dir = 0;
+                o->normal = (uint16_t)(ph->normal & IL_PM_NORMAL_MASK);
+            }
+            il_pm_scratch_free(&scratch);
+        }
     }
     if (atomic_load(&oom))
         return il_fail(err, IL_ERR_MEMORY, "photon map: out of memory precomputing irradiance");
@@ -48,11 +61,12 @@ static il_status estimate_points(const il_pm_map *map, const il_pm_lookup *q, ui
 il_status il_pm_irradiance_build(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
                                  int threads, il_error *err)
 {
-    return il_pm_irradiance_build_split(map, q, stride, threads, NULL, err);
+    return il_pm_irradiance_build_split(map, q, stride, threads, NULL, NULL, err);
 }
 
 il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, uint32_t stride,
-                                       int threads, const il_distrib *d, il_error *err)
+                                       int threads, const il_distrib *d, il_pm_watch *watch,
+                                       il_error *err)
 {
     free(map->irr);
     map->irr = NULL;
@@ -66,11 +80,16 @@ il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, ui
     size_t m = (map->count + stride - 1) / stride;
     il_photon *irr = NULL;
     il_status st;
+    bool stopped = false;
     if (!il_distrib_on(d)) {
         irr = il_malloc(m * sizeof *irr, err);
         if (!irr)
             return IL_ERR_MEMORY;
-        st = estimate_points(map, q, stride, threads, 0, m, irr, err);
+        st = estimate_points(map, q, stride, threads, 0, m, irr, watch, &stopped, err);
+        if (st == IL_OK && stopped) { /* left out: full estimates instead */
+            free(irr);
+            return IL_OK;
+        }
     } else {
         /* This process's contiguous part, then all parts in rank order. */
         uint64_t lo, hi;
@@ -78,7 +97,9 @@ il_status il_pm_irradiance_build_split(il_pm_map *map, const il_pm_lookup *q, ui
         il_photon *part = il_malloc((hi > lo ? hi - lo : 1) * sizeof *part, err);
         if (!part)
             return IL_ERR_MEMORY;
-        st = estimate_points(map, q, stride, threads, (size_t)lo, (size_t)hi, part, err);
+        /* No watch: a process stopping alone would leave the others waiting. */
+        st = estimate_points(map, q, stride, threads, (size_t)lo, (size_t)hi, part, NULL,
+                             &stopped, err);
         size_t *counts = st == IL_OK ? il_calloc((size_t)d->size, sizeof *counts, err) : NULL;
         if (st == IL_OK && !counts)
             st = IL_ERR_MEMORY;

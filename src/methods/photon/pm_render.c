@@ -134,13 +134,20 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
 {
     il_pm_photons ph = {0};
     double t0 = omp_get_wtime();
+    /* Progress and a stop (il_photon_step_fn), for one process alone. */
+    il_pm_watch watch = {.t0 = t0};
+    if (desc->photon && !il_distrib_on(desc->distrib)) {
+        watch.fn = desc->photon->on_step;
+        watch.user = desc->photon->on_step_user;
+    }
     if (ps->max_photon_depth > 0) {
         il_pm_trace_desc td = {.first = 0,
                                .count = ps->photons,
                                .seed = desc->seed,
                                .max_depth = ps->max_photon_depth,
                                .threads = desc->threads,
-                               .split = true};
+                               .split = true,
+                               .watch = &watch};
         il_status s = il_pm_trace_split(scene, &td, desc->distrib, &ph, err);
         if (s != IL_OK)
             return s;
@@ -148,7 +155,10 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
     il_pm_report_photons(desc->photon, ph.global, ph.num_global, 0);
     il_pm_report_photons(desc->photon, ph.caustic, ph.num_caustic, 1);
     double t1 = omp_get_wtime();
-    float scale = 1.0f / (float)ps->photons;
+    /* Power per emitted photon: Jensen 2001, section 5.1 (the lights'
+     * power over the number emitted, here those actually traced). */
+    uint64_t emitted = ps->max_photon_depth > 0 ? ph.emitted : ps->photons;
+    float scale = emitted > 0 ? 1.0f / (float)emitted : 0.0f;
     il_status s = il_pm_map_build_split(global, ph.global, ph.num_global, scale, ps->lookup.lookup,
                                         ps->lookup.radius, desc->distrib, err);
     if (s == IL_OK)
@@ -158,10 +168,12 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
         free(ph.caustic);
     /* Christensen 1999: irradiance at every 4th global photon, so that a
      * Lambertian hit reads the global map with one nearest-point search. */
-    if (s == IL_OK && !(desc->photon && desc->photon->no_precomputed_irradiance))
+    if (s == IL_OK && !(desc->photon && desc->photon->no_precomputed_irradiance) &&
+        !watch.stopped)
         s = il_pm_irradiance_build_split(global, &ps->lookup, IL_PM_IRRADIANCE_STRIDE, desc->threads,
-                                         desc->distrib, err);
-    st->emitted = ps->photons;
+                                         desc->distrib, &watch, err);
+    st->emitted = emitted;
+    st->stopped = watch.stopped;
     st->stored_global = ph.num_global;
     st->stored_caustic = ph.num_caustic;
     st->photon_rays = ph.rays;

@@ -170,8 +170,12 @@ il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm
 
     photon_buf global = {0}, caustic = {0};
     bool oom = false;
-    uint64_t rays = 0;
+    uint64_t rays = 0, emitted = 0;
     for (uint64_t c0 = 0; c0 < num_chunks && !oom; c0 += round) {
+        /* A stop between rounds keeps whole rounds: the first `emitted`
+         * indices, as if only those had been asked for. */
+        if (!il_pm_watch_report(desc->watch, IL_PHOTON_TRACING, emitted, desc->count))
+            break;
         int64_t n = (int64_t)(num_chunks - c0 < round ? num_chunks - c0 : round);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
         for (int64_t k = 0; k < n; k++) {
@@ -194,6 +198,8 @@ il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm
                   !buf_append(&caustic, &ctx[k].caustic);
             rays += ctx[k].rays;
         }
+        uint64_t end = (c0 + (uint64_t)n) * IL_PM_CHUNK;
+        emitted = end < desc->count ? end : desc->count;
     }
     for (uint64_t k = 0; k < round; k++) {
         free(ctx[k].global.items);
@@ -211,5 +217,6 @@ il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm
     out->num_caustic = caustic.count;
     out->caustic = buf_release(&caustic);
     out->rays = rays;
+    out->emitted = emitted;
     return IL_OK;
 }
