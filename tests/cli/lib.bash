@@ -64,3 +64,22 @@ wait_for_sigint() {
     done
     return 1
 }
+
+# expect_interrupted TIMES WHAT -- COMMAND...: runs the command in the
+# background with stderr in err.txt, sends it TIMES Ctrl-C (SIGINT) half a
+# second apart once it catches them, and checks its exit status 130.
+expect_interrupted() {
+    times=$1; what=$2; shift 3
+    "$@" 2>err.txt &
+    pid=$!
+    if wait_for_sigint "$pid"; then
+        for _ in $(seq 1 "$times"); do
+            sleep 0.5
+            kill -INT "$pid" 2>/dev/null
+        done
+    fi
+    wait "$pid"
+    got=$?
+    checks=$((checks + 1))
+    [ "$got" = 130 ] || { fail "$what: exit $got, expected 130"; cat err.txt >&2; }
+}

@@ -109,24 +109,14 @@ fi
 # Ctrl-C during the solve (here a first refinement that would run for
 # minutes): the solve stops, the image of its solution is written and the
 # exit status is 130; a bake likewise.
-interrupt() { # interrupt NAME COMMAND...: runs it in the background, Ctrl-C, status in $got
-    what=$1; shift
-    "$@" 2>err.txt &
-    pid=$!
-    wait_for_sigint "$pid" && sleep 0.5 && kill -INT "$pid"
-    wait "$pid"
-    got=$?
-    checks=$((checks + 1))
-    [ "$got" = 130 ] || { fail "$what: exit $got, expected 130"; cat err.txt >&2; }
-}
 long="--method hr --vis-rays 4096 --bf-eps 1e-4"
-interrupt "interrupted hr render" "$ILLUM" render cornell $long --width 16 --height 16 --spp 1 \
-    -o stopped.pfm --stats stopped.json
+expect_interrupted 1 "interrupted hr render" -- "$ILLUM" render cornell $long --width 16 \
+    --height 16 --spp 1 -o stopped.pfm --stats stopped.json
 expect_file stopped.pfm "interrupted hr render"
 expect_stderr "the hr solve stopped after 0 iterations" "interrupted hr render"
 checks=$((checks + 1))
 grep -q '"stopped":[[:space:]]*true' stopped.json || fail "interrupted hr render: stats lack stopped"
-interrupt "interrupted hr bake" "$ILLUM" bake cornell $long -o stopped.ply
+expect_interrupted 1 "interrupted hr bake" -- "$ILLUM" bake cornell $long -o stopped.ply
 expect_file stopped.ply "interrupted hr bake"
 expect_stderr "interrupted" "interrupted hr bake"
 

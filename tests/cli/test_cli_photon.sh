@@ -41,14 +41,8 @@ grep -q '"passes":[[:space:]]*3' sppm.json || fail "sppm.json: passes is not 3"
 
 # Ctrl-C while photons are traced (2e8 would take minutes): the tracing
 # stops, the image with the photons traced so far is written, exit 130.
-"$ILLUM" render cornell --method photon --photons 200000000 --width 16 --height 16 --spp 1 \
-    -o stopped.pfm --stats stopped.json 2>err.txt &
-pid=$!
-wait_for_sigint "$pid" && sleep 1 && kill -INT "$pid"
-wait "$pid"
-got=$?
-checks=$((checks + 1))
-[ "$got" = 130 ] || { fail "interrupted photon tracing: exit $got, expected 130"; cat err.txt >&2; }
+expect_interrupted 1 "interrupted photon tracing" -- "$ILLUM" render cornell --method photon \
+    --photons 200000000 --width 16 --height 16 --spp 1 -o stopped.pfm --stats stopped.json
 expect_file stopped.pfm "interrupted photon tracing"
 expect_stderr "set-up stopped after" "interrupted photon tracing"
 checks=$((checks + 1))

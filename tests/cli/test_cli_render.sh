@@ -49,14 +49,8 @@ expect_exit 0 "time limit" -- "$ILLUM" render cornell --width 16 --height 16 --t
 expect_file timed.exr "time limit"
 
 # Ctrl-C: the render stops after the current pass, writes what it has and exits 130.
-"$ILLUM" render cornell --width 64 --height 64 --time 60 -q -o interrupted.pfm --stats interrupted.json 2>err.txt &
-pid=$!
-wait_for_sigint "$pid" && sleep 1
-kill -INT "$pid"
-wait "$pid"
-got=$?
-checks=$((checks + 1))
-[ "$got" = 130 ] || fail "interrupted render: exit $got, expected 130"
+expect_interrupted 1 "interrupted render" -- "$ILLUM" render cornell --width 64 --height 64 \
+    --time 60 -q -o interrupted.pfm --stats interrupted.json
 expect_file interrupted.pfm "interrupted render"
 expect_stderr "interrupted" "interrupted render"
 checks=$((checks + 1))
@@ -64,14 +58,8 @@ grep -q '"interrupted":[[:space:]]*true' interrupted.json || fail "stats of the 
 
 # A second Ctrl-C quits at once, writing nothing: the way out of a set-up
 # that cannot stop part-way (here a Linespace injection of 2e9 light paths).
-"$ILLUM" render cornell --method linespace --inject-rays 2000000000 --width 16 --height 16 \
-    --spp 1 -o never.pfm 2>err.txt &
-pid=$!
-wait_for_sigint "$pid" && sleep 0.5 && kill -INT "$pid" && sleep 0.5 && kill -INT "$pid"
-wait "$pid"
-got=$?
-checks=$((checks + 1))
-[ "$got" = 130 ] || { fail "second Ctrl-C: exit $got, expected 130"; cat err.txt >&2; }
+expect_interrupted 2 "second Ctrl-C" -- "$ILLUM" render cornell --method linespace \
+    --inject-rays 2000000000 --width 16 --height 16 --spp 1 -o never.pfm
 expect_no_file never.pfm "second Ctrl-C"
 expect_stderr "Ctrl-C again quits at once" "first Ctrl-C"
 
