@@ -89,6 +89,28 @@ static bool on_step(const il_radiosity_progress *p, void *user)
     return go;
 }
 
+/* hr's solve and photon mapping's set-up stop likewise (closing the window
+ * during an hr refinement of minutes waited for its end before). */
+static bool still_wanted(il_view_worker *w)
+{
+    pthread_mutex_lock(&w->mu);
+    bool go = !stale(w);
+    pthread_mutex_unlock(&w->mu);
+    return go;
+}
+
+static bool on_hr_step(const il_hr_progress *p, void *user)
+{
+    (void)p;
+    return still_wanted(user);
+}
+
+static bool on_photon_step(const il_photon_progress *p, void *user)
+{
+    (void)p;
+    return still_wanted(user);
+}
+
 static double now_seconds(void)
 {
     struct timespec t;
@@ -203,6 +225,12 @@ static il_status bake(il_view_worker *w, il_method method, il_error *err)
     rd.on_step = on_step;
     rd.on_step_user = w;
     d.radiosity = &rd;
+    il_hr_desc hd = {0};
+    if (d.hr)
+        hd = *d.hr;
+    hd.on_step = on_hr_step;
+    hd.on_step_user = w;
+    d.hr = &hd;
     il_bake_result *res = NULL;
     look_ctx look = {w, method};
     w->last_look = now_seconds();     /* the first look 0.05 s into the solve */
@@ -284,6 +312,8 @@ static void *worker_main(void *arg)
                 pd.on_photons = on_photons;
                 pd.on_photons_user = w;
             }
+            pd.on_step = on_photon_step;
+            pd.on_step_user = w;
             d.photon = &pd;
             st = il_render(w->scene, film, &d, &rs, &err);
         }
