@@ -423,9 +423,6 @@ typedef struct il_radiosity_stats {
 
 /* --------------------------------------------------- hierarchical radiosity */
 
-/* Hanrahan, Salzman & Aupperle 1991 as in SPLASH-2's radiosity program.  The
- * epsilons are relative, so rescaling the scene or its lights changes
- * nothing (docs/hierarchical-radiosity.md maps them to SPLASH-2's values). */
 /* What the solve is doing when il_hr_desc.on_step is called. */
 typedef enum il_hr_phase {
     IL_HR_LINKING = 0,         /* the initial links between facing patches */
@@ -457,6 +454,9 @@ typedef struct il_hr_progress {
  * of point, spot, directional lights and sky.  il_hr_stats.stopped says so. */
 typedef bool (*il_hr_step_fn)(const il_hr_progress *progress, void *user);
 
+/* Hanrahan, Salzman & Aupperle 1991 as in SPLASH-2's radiosity program.  The
+ * epsilons are relative, so rescaling the scene or its lights changes
+ * nothing (docs/hierarchical-radiosity.md maps them to SPLASH-2's values). */
 typedef struct il_hr_desc {
     float bf_eps;              /* refine a link while F * B * V / B_ref exceeds this,
                                   B_ref the scene's mean emitted radiance
