@@ -658,6 +658,19 @@ typedef struct il_rsm_stats {
  * shaft (pair of boundary patches) and direction of every voxel they cross;
  * a path tracer reads that back as radiance at its diffuse hits instead of
  * tracing on.  Sizes are fractions of a voxel, so the options are scale-free. */
+/* Handed to il_linespace_desc.on_step during the light injection. */
+typedef struct il_linespace_progress {
+    uint64_t injected, total;  /* light paths injected so far, of all */
+    double seconds;            /* since the injection started */
+} il_linespace_progress;
+
+/* Called on the calling thread after every round of light paths (some tens
+ * of thousands).  Return false to stop the injection: the Linespace then
+ * holds the paths injected so far, the first `injected` indices, the same
+ * as asking for that many (il_linespace_stats.inject_rays counts them and
+ * .stopped says so), and the camera pass follows. */
+typedef bool (*il_linespace_step_fn)(const il_linespace_progress *progress, void *user);
+
 typedef struct il_linespace_desc {
     uint32_t grid;             /* voxels along the scene's longest side (the others
                                   in proportion, voxels near cubic), 1 to 256; 0 means 8 */
@@ -688,6 +701,8 @@ typedef struct il_linespace_desc {
                                   default: slower samples, less bias; docs/linespace.md) */
     float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
     float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
+    il_linespace_step_fn on_step; /* progress and stop of the injection; NULL: none */
+    void *on_step_user;
 } il_linespace_desc;
 
 typedef struct il_linespace_stats {
@@ -698,7 +713,7 @@ typedef struct il_linespace_stats {
     uint64_t candidates;       /* candidate triangle references of all stored shafts */
     uint64_t overflow_shafts;  /* shafts whose occlusion test casts a ray instead */
     uint64_t memory_bytes;     /* the whole structure */
-    uint64_t inject_rays;      /* light paths emitted */
+    uint64_t inject_rays;      /* light paths emitted (fewer than asked when stopped) */
     uint64_t injected_segments; /* (segment, voxel) deposits */
     uint64_t lookups, lookup_hits, lookup_empty, lookup_occluded; /* occluded: the in-shaft
                                   test found geometry first (tested: every stored entry
@@ -708,6 +723,7 @@ typedef struct il_linespace_stats {
     double seconds_build;      /* grid, shafts and candidate lists */
     double seconds_inject;
     double seconds_sample;     /* the camera pass */
+    bool stopped;              /* on_step stopped the injection early */
 } il_linespace_stats;
 
 /* ------------------------------------------------- distributed rendering */

@@ -190,6 +190,7 @@ void cli_ibl_summary(const il_ibl_desc *desc, const il_ibl_stats *stats);
 typedef struct cli_linespace_options {
     il_linespace_desc desc;
     cli_method_note note;            /* any linespace option on the command line */
+    cli_solve_line line;             /* the light injection */
 } cli_linespace_options;
 
 extern const char cli_linespace_help[];
@@ -199,6 +200,11 @@ extern const char cli_linespace_help[];
 bool cli_linespace_option(int argc, char **argv, int *i, cli_linespace_options *o, int *rc);
 /* Adds the "linespace" object of --stats (every il_linespace_stats field). */
 void cli_linespace_stats_json(struct cJSON *parent, const il_linespace_stats *stats);
+/* Installs desc.on_step: "linespace: injecting N / M light paths" on a
+ * terminal unless quiet; the injection stops early once *stop is set. */
+void cli_linespace_install_progress(cli_linespace_options *o, bool quiet,
+                                    const volatile sig_atomic_t *stop);
+void cli_linespace_end_progress(cli_linespace_options *o);
 /* One line on stderr: grid, shafts, memory, injection and sampling times. */
 void cli_linespace_summary(const il_linespace_stats *stats);
 

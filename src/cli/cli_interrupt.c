@@ -1,9 +1,9 @@
 /* Ctrl-C during `illum render` and `illum bake` (cli.h).  The first one
  * asks the running work to stop early: a render after its current pass, a
- * radiosity or hr solve at its next step, photon tracing after its current
- * round, and the result so far is written.  A set-up that cannot stop
- * part-way (a photon kd-tree build, a Linespace's injection) runs on, so
- * the first Ctrl-C also says that a second one quits
+ * radiosity or hr solve at its next step, photon tracing or a Linespace
+ * injection after its current round, and the result so far is written.
+ * Work that cannot stop part-way (a photon kd-tree build, one pass of a
+ * huge image) runs on, so the first Ctrl-C also says that a second one quits
  * at once: SA_RESETHAND gives it SIGINT's default action, which ends the
  * process before any output is written (outputs are written after the
  * handler is released, each to a temporary name first). */

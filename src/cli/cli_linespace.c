@@ -124,6 +124,25 @@ bool cli_linespace_option(int argc, char **argv, int *i, cli_linespace_options *
     return true;
 }
 
+static bool on_step(const il_linespace_progress *p, void *user)
+{
+    cli_linespace_options *o = user;
+    return cli_solve_line_update(&o->line, p->seconds, false,
+                                 "linespace: injecting %llu / %llu light paths, %.1fs",
+                                 (unsigned long long)p->injected, (unsigned long long)p->total,
+                                 p->seconds);
+}
+
+void cli_linespace_install_progress(cli_linespace_options *o, bool quiet,
+                                    const volatile sig_atomic_t *stop)
+{
+    cli_solve_line_start(&o->line, quiet, stop);
+    o->desc.on_step = on_step;
+    o->desc.on_step_user = o;
+}
+
+void cli_linespace_end_progress(cli_linespace_options *o) { cli_solve_line_end(&o->line); }
+
 void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
 {
     cJSON *r = cJSON_AddObjectToObject(parent, "linespace");
@@ -146,6 +165,7 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
     cJSON_AddNumberToObject(r, "seconds_build", s->seconds_build);
     cJSON_AddNumberToObject(r, "seconds_inject", s->seconds_inject);
     cJSON_AddNumberToObject(r, "seconds_sample", s->seconds_sample);
+    cJSON_AddBoolToObject(r, "stopped", s->stopped);
 }
 
 void cli_linespace_summary(const il_linespace_stats *s)

@@ -445,6 +445,8 @@ int cmd_render(int argc, char **argv)
         cli_hr_install_progress(&o.m.hr, o.run.quiet, &cli_interrupted);
     } else if (o.desc.method == IL_METHOD_PHOTON) {
         cli_photon_install_progress(&o.m.photon, o.run.quiet, &cli_interrupted);
+    } else if (o.desc.method == IL_METHOD_LINESPACE) {
+        cli_linespace_install_progress(&o.m.linespace, o.run.quiet, &cli_interrupted);
     }
     cli_method_options_install(&o.m, &o.desc);
     ps.lights = o.desc.method == IL_METHOD_IBL;
@@ -460,6 +462,7 @@ int cmd_render(int argc, char **argv)
     cli_radiosity_end_progress(&o.m.rad);
     cli_hr_end_progress(&o.m.hr);
     cli_photon_end_progress(&o.m.photon);
+    cli_linespace_end_progress(&o.m.linespace);
     if (ps.drawn)
         fputc('\n', stderr);
     if (cli_mpi_rank() > 0) { /* rank 0 writes the outputs and reports errors */
@@ -524,6 +527,10 @@ int cmd_render(int argc, char **argv)
             cli_error("interrupted: photon mapping's set-up stopped after %llu photons; the image "
                       "with those is written",
                       (unsigned long long)rs.photon.emitted);
+        else if (o.desc.method == IL_METHOD_LINESPACE && rs.linespace.stopped)
+            cli_error("interrupted: the Linespace injection stopped after %llu light paths; the "
+                      "image with those is written",
+                      (unsigned long long)rs.linespace.inject_rays);
         else
             cli_error("interrupted after %u spp; the image so far is written", rs.spp);
         return IL_EXIT_INTERRUPTED;

@@ -111,6 +111,12 @@ static bool on_photon_step(const il_photon_progress *p, void *user)
     return still_wanted(user);
 }
 
+static bool on_linespace_step(const il_linespace_progress *p, void *user)
+{
+    (void)p;
+    return still_wanted(user);
+}
+
 static double now_seconds(void)
 {
     struct timespec t;
@@ -315,6 +321,12 @@ static void *worker_main(void *arg)
             pd.on_step = on_photon_step;
             pd.on_step_user = w;
             d.photon = &pd;
+            il_linespace_desc ld = {0};
+            if (d.linespace)
+                ld = *d.linespace;
+            ld.on_step = on_linespace_step;
+            ld.on_step_user = w;
+            d.linespace = &ld;
             st = il_render(w->scene, film, &d, &rs, &err);
         }
         /* Publish the final film too: not every method calls back after its last pass. */

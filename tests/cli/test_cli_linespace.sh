@@ -44,6 +44,15 @@ expect_exit 0 "render linespace, final gather" -- "$ILLUM" render cornell --meth
     --inject-rays 20000 --grid 4 --trace-first-bounce on --width 16 --height 16 --spp 2 -q -o gather.pfm
 expect_file gather.pfm "render linespace, final gather"
 
+# Ctrl-C during the injection (2e9 light paths would take minutes): it
+# stops, the image with the paths injected so far is written, exit 130.
+expect_interrupted 1 "interrupted injection" -- "$ILLUM" render cornell --method linespace \
+    --inject-rays 2000000000 --width 16 --height 16 --spp 1 -o stopped.pfm --stats stopped.json
+expect_file stopped.pfm "interrupted injection"
+expect_stderr "injection stopped after" "interrupted injection"
+checks=$((checks + 1))
+grep -q '"stopped":[[:space:]]*true' stopped.json || fail "interrupted injection: stats lack stopped"
+
 # Bad values and options of the wrong method: exit 1 or 2, no output.
 expect_exit 1 "--grid 0" -- "$ILLUM" render cornell --method linespace --grid 0 -q -o bad.exr
 expect_exit 1 "--grid 1000" -- "$ILLUM" render cornell --method linespace --grid 1000 -q -o bad.exr

@@ -41,6 +41,8 @@ typedef struct il_ls_settings {
     bool trace_first_bounce; /* read only after one non-delta bounce was traced */
     float n1, n2;           /* glossy thresholds on the Phong exponent */
     uint32_t max_depth;     /* of the camera paths */
+    il_linespace_step_fn on_step; /* the injection's progress and stop; NULL: none */
+    void *on_step_user;
 } il_ls_settings;
 
 il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth, il_ls_settings *out,
@@ -281,6 +283,8 @@ void il_ls_walk(const il_linespace *ls, il_vec3 o, il_vec3 d, float t_end, float
 typedef struct il_ls_inject_result {
     uint64_t deposits;
     uint64_t rays;
+    uint64_t injected;      /* light paths: s->inject_rays unless s->on_step stopped it */
+    bool stopped;
 } il_ls_inject_result;
 
 /* Traces s->inject_rays light paths (keyed by seed and path index) and

@@ -37,6 +37,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -181,7 +182,7 @@ static void coarse_add(coarse_sum *c, double meas, const double *acc, const uint
 static void coarse_finish(il_linespace *ls, uint32_t voxel, const coarse_sum *cs, uint64_t paths)
 {
     for (uint32_t c = 0; c < ls->num_coarse; c++) {
-        double scale = cs[c].measure > 0.0 ? 1.0 / ((double)paths * cs[c].measure) : 0.0;
+        double scale = cs[c].measure > 0.0 && paths > 0 ? 1.0 / ((double)paths * cs[c].measure) : 0.0;
         for (uint32_t dir = 0; dir < 2; dir++) {
             il_ls_coarse *e = il_ls_coarse_entry(ls, voxel, c, dir);
             for (int k = 0; k < 3; k++)
@@ -233,6 +234,13 @@ static void merge_round(const chunk *ch, size_t n, uint64_t num_entries, int thr
     *deposits += count;
 }
 
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t seed, int threads,
                        il_linespace *ls, il_ls_inject_result *out, il_error *err)
 {
@@ -260,7 +268,18 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
     bool oom = false;
+    uint64_t injected = 0;
+    double t0 = seconds_now();
     for (uint64_t c0 = 0; c0 < num_chunks && !oom; c0 += round) {
+        /* A stop between rounds keeps whole rounds: the first `injected`
+         * paths, as if only those had been asked for. */
+        if (st->on_step) {
+            il_linespace_progress p = {injected, paths, seconds_now() - t0};
+            if (!st->on_step(&p, st->on_step_user)) {
+                out->stopped = true;
+                break;
+            }
+        }
         int64_t n = (int64_t)(num_chunks - c0 < round ? num_chunks - c0 : round);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
         for (int64_t k = 0; k < n; k++) {
@@ -280,7 +299,10 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             out->rays += ch[k].rays;
         }
         merge_round(ch, (size_t)n, num_entries, threads, acc, filled, &out->deposits);
+        uint64_t end = (c0 + (uint64_t)n) * LS_CHUNK;
+        injected = end < paths ? end : paths;
     }
+    out->injected = injected;
     for (uint64_t k = 0; k < round; k++)
         free(ch[k].d);
     free(ch);
@@ -317,7 +339,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
                 m &= m - 1u;
                 int64_t slot = il_ls_slot(ls, v, shaft);
                 double meas = st->solid_angle ? (double)ls->measure[shaft] : mean_measure;
-                double scale = meas > 0.0 ? 1.0 / ((double)paths * meas) : 0.0;
+                double scale = meas > 0.0 && injected > 0 ? 1.0 / ((double)injected * meas) : 0.0;
                 il_ls_rec *r = &ls->recs[slot];
                 for (uint32_t dir = 0; dir < 2; dir++) {
                     uint64_t e = 2u * (uint64_t)slot + dir;
@@ -334,7 +356,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             }
         }
         if (cs)
-            coarse_finish(ls, v, cs, paths);
+            coarse_finish(ls, v, cs, injected);
     }
     free(cs);
     free(acc);

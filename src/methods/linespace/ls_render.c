@@ -475,7 +475,8 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     st->candidates = ls.num_cand;
     st->overflow_shafts = ls.num_overflow;
     st->memory_bytes = il_ls_memory(&ls);
-    st->inject_rays = set.inject_rays;
+    st->inject_rays = ir.injected;
+    st->stopped = ir.stopped;
     st->injected_segments = ir.deposits;
     st->seconds_build = t1 - t0;
     st->seconds_inject = t2 - t1;

@@ -37,6 +37,8 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
     out->grid = d->grid ? d->grid : 8u;
     out->n = d->n ? d->n : 4u;
     out->inject_rays = d->inject_rays ? d->inject_rays : 1000000u;
+    out->on_step = d->on_step;
+    out->on_step_user = d->on_step_user;
     out->max_depth = max_depth ? max_depth : 8u;
     /* A light path's segment k has scattered k times; read at a camera
      * vertex it scatters once more, or twice when the first bounce is
