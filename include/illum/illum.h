@@ -701,7 +701,8 @@ typedef struct il_linespace_desc {
                                   default: slower samples, less bias; docs/linespace.md) */
     float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
     float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
-    il_linespace_step_fn on_step; /* progress and stop of the injection; NULL: none */
+    il_linespace_step_fn on_step; /* progress and stop of the injection; NULL: none
+                                  (not called when split across processes) */
     void *on_step_user;
 } il_linespace_desc;
 

@@ -36,6 +36,7 @@
 #include "methods/camera_pass.h"
 #include "methods/camera_wave.h"
 #include "methods/diffuse_wave.h"
+#include "methods/distrib.h"
 #include "methods/linespace/ls.h"
 #include "scene/bsdf.h"
 #include "scene/direct.h"
@@ -456,6 +457,10 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
         return s;
     il_linespace_stats *st = &stats->linespace;
     int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+    /* Split across processes, each injects the same paths: one stopping
+     * alone would render its tiles from another Linespace. */
+    if (il_distrib_on(desc->distrib))
+        set.on_step = NULL;
 
     double t0 = omp_get_wtime();
     il_linespace ls;
