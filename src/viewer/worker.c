@@ -117,6 +117,17 @@ static bool on_linespace_step(const il_linespace_progress *p, void *user)
     return still_wanted(user);
 }
 
+/* Points the render's method options `field` at `copy`: the caller's
+ * options (or the defaults) with on_step set to fn, called with the worker. */
+#define WATCH_STEPS(d, field, copy, fn, w)                                                      \
+    do {                                                                                        \
+        if ((d).field)                                                                          \
+            (copy) = *(d).field;                                                                \
+        (copy).on_step = (fn);                                                                  \
+        (copy).on_step_user = (w);                                                              \
+        (d).field = &(copy);                                                                    \
+    } while (0)
+
 static double now_seconds(void)
 {
     struct timespec t;
@@ -226,17 +237,9 @@ static il_status bake(il_view_worker *w, il_method method, il_error *err)
     il_render_desc d = w->base;
     d.method = method;
     il_radiosity_desc rd = {0};
-    if (d.radiosity)
-        rd = *d.radiosity;
-    rd.on_step = on_step;
-    rd.on_step_user = w;
-    d.radiosity = &rd;
     il_hr_desc hd = {0};
-    if (d.hr)
-        hd = *d.hr;
-    hd.on_step = on_hr_step;
-    hd.on_step_user = w;
-    d.hr = &hd;
+    WATCH_STEPS(d, radiosity, rd, on_step, w);
+    WATCH_STEPS(d, hr, hd, on_hr_step, w);
     il_bake_result *res = NULL;
     look_ctx look = {w, method};
     w->last_look = now_seconds();     /* the first look 0.05 s into the solve */
@@ -305,28 +308,17 @@ static void *worker_main(void *arg)
             }
             d.progress = on_progress;
             d.progress_user = &ctx;
+            /* A newer request ends a solve or a set-up early. */
             il_radiosity_desc rd = {0};
-            if (d.radiosity)
-                rd = *d.radiosity;
-            rd.on_step = on_step;     /* a newer request ends the solve early */
-            rd.on_step_user = w;
-            d.radiosity = &rd;
             il_photon_desc pd = {0};
-            if (d.photon)
-                pd = *d.photon;
+            il_linespace_desc ld = {0};
+            WATCH_STEPS(d, radiosity, rd, on_step, w);
+            WATCH_STEPS(d, photon, pd, on_photon_step, w);
+            WATCH_STEPS(d, linespace, ld, on_linespace_step, w);
             if (!preview) {
                 pd.on_photons = on_photons;
                 pd.on_photons_user = w;
             }
-            pd.on_step = on_photon_step;
-            pd.on_step_user = w;
-            d.photon = &pd;
-            il_linespace_desc ld = {0};
-            if (d.linespace)
-                ld = *d.linespace;
-            ld.on_step = on_linespace_step;
-            ld.on_step_user = w;
-            d.linespace = &ld;
             st = il_render(w->scene, film, &d, &rs, &err);
         }
         /* Publish the final film too: not every method calls back after its last pass. */
