@@ -44,9 +44,10 @@ static void refine_link(const il_hr_solver *s, il_hr_pool *pool, il_hr_elem *r, 
     bool stopping = il_hr_stopping(s);
     /* Split across processes, the table has it (the same bits). */
     if (l->vis < 0.0f && !(stopping && s->stats.iterations == 0) &&
-        !(s->table && il_hr_distrib_take_old(s, pool, r, l, parent_visible, &at)))
+        !(s->table && il_hr_distrib_take_old(s, pool, r, l, parent_visible, &at))) {
         il_hr_link_visibility(s, pool, r, l, parent_visible, splits(s, r, l, 1.0f));
-    il_hr_watch_poll(s);
+        il_hr_watch_poll(s); /* here, after the rays: a link kept as it was costs next to nothing */
+    }
     if (stopping || !splits(s, r, l, l->vis_bound) || pool->failed) {
         il_hr_link_append(r, l);
         return;
