@@ -96,6 +96,13 @@ static inline il_scene *load_committed(const char *name)
     return s;
 }
 
+/* Whether two images have the same size and the same bits. */
+static inline bool images_identical(const il_image *a, const il_image *b)
+{
+    return a->rgb && b->rgb && a->width == b->width && a->height == b->height &&
+           memcmp(a->rgb, b->rgb, sizeof(float) * 3 * (size_t)a->width * a->height) == 0;
+}
+
 /* Renders with rd through il_render into a new w x h image (rgb NULL on failure). */
 static inline il_image render_desc_image(const il_scene *s, uint32_t w, uint32_t h,
                                          const il_render_desc *rd, il_render_stats *stats)

@@ -27,12 +27,6 @@ static il_scene *scene(void)
     return s;
 }
 
-static bool same_image(const il_image *a, const il_image *b)
-{
-    return a->rgb && b->rgb && a->width == b->width && a->height == b->height &&
-           !memcmp(a->rgb, b->rgb, 3 * sizeof(float) * a->width * a->height);
-}
-
 typedef struct snapshot {
     uint32_t at;              /* lights at which to copy the film */
     uint32_t stop_at;         /* return false once this many lights are done (0: never) */
@@ -78,13 +72,13 @@ static void test_progressive(il_ibl_shadows shadows, uint32_t spp)
     il_image one = render(s, &d96, spp, 1, NULL, NULL);
     d96.batch = 32;
     il_image three = render(s, &d96, spp, 2, NULL, NULL);
-    CHECK(same_image(&snap.img, &one));
-    CHECK(same_image(&snap.img, &three));
-    CHECK(!same_image(&snap.img, &full));
+    CHECK(images_identical(&snap.img, &one));
+    CHECK(images_identical(&snap.img, &three));
+    CHECK(!images_identical(&snap.img, &full));
 
     /* Thread count: the same film. */
     il_image full1 = render(s, &d, spp, 1, NULL, NULL);
-    CHECK(same_image(&full, &full1));
+    CHECK(images_identical(&full, &full1));
 
     /* Stopped by the callback after 64 lights: the 64-light image. */
     snapshot stop = {.stop_at = 64, .increasing = true};
@@ -93,12 +87,12 @@ static void test_progressive(il_ibl_shadows shadows, uint32_t spp)
     d64.lights = 64;
     il_image ref64 = render(s, &d64, spp, 2, NULL, NULL);
     CHECK(st.ibl.lights == 64 && stop.calls == 2);
-    CHECK(same_image(&stopped, &ref64));
+    CHECK(images_identical(&stopped, &ref64));
 
     printf("shadows %d, spp %u: snapshot %s, threads %s, stop %s\n", (int)shadows, spp,
-           same_image(&snap.img, &one) ? "equal" : "DIFFERENT",
-           same_image(&full, &full1) ? "equal" : "DIFFERENT",
-           same_image(&stopped, &ref64) ? "equal" : "DIFFERENT");
+           images_identical(&snap.img, &one) ? "equal" : "DIFFERENT",
+           images_identical(&full, &full1) ? "equal" : "DIFFERENT",
+           images_identical(&stopped, &ref64) ? "equal" : "DIFFERENT");
     il_image_free(&full);
     il_image_free(&full1);
     il_image_free(&one);
@@ -126,8 +120,8 @@ static void test_no_cache(void)
         CHECK_OK(il_film_resolve(film, &img[k], &g_err), &g_err);
         il_film_release(film);
     }
-    printf("no cache: %s\n", same_image(&img[0], &img[1]) ? "equal" : "DIFFERENT");
-    CHECK(same_image(&img[0], &img[1]));
+    printf("no cache: %s\n", images_identical(&img[0], &img[1]) ? "equal" : "DIFFERENT");
+    CHECK(images_identical(&img[0], &img[1]));
     il_image_free(&img[0]);
     il_image_free(&img[1]);
     il_scene_release(s);
@@ -144,11 +138,11 @@ static void test_time_and_seed(void)
     CHECK(st.ibl.lights == 16);
     il_ibl_desc d16 = {.lights = 16};
     il_image ref = render(s, &d16, 1, 0, NULL, NULL);
-    CHECK(same_image(&timed, &ref));
+    CHECK(images_identical(&timed, &ref));
     /* Another seed, another light set and other camera samples. */
     rd = (il_render_desc){.method = IL_METHOD_IBL, .seed = 5, .ibl = &d16};
     il_image other = render_desc_image(s, W, H, &rd, NULL);
-    CHECK(!same_image(&other, &ref));
+    CHECK(!images_identical(&other, &ref));
     il_image_free(&timed);
     il_image_free(&ref);
     il_image_free(&other);

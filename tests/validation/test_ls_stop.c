@@ -38,11 +38,6 @@ static bool on_step(const il_linespace_progress *p, void *user)
     return true;
 }
 
-static bool same(const il_image *a, const il_image *b)
-{
-    return a->rgb && b->rgb && memcmp(a->rgb, b->rgb, sizeof(float) * 3 * W * H) == 0;
-}
-
 static il_image render(const il_scene *s, il_linespace_desc ld, watcher *w, il_render_stats *st)
 {
     if (w) {
@@ -73,7 +68,7 @@ int main(void)
     il_image plain = render(s, ld, NULL, &st);
     watcher all = {.stop_at = UINT64_MAX};
     il_image watched = render(s, ld, &all, &st);
-    CHECK(same(&plain, &watched));
+    CHECK(images_identical(&plain, &watched));
     CHECK(!st.linespace.stopped && st.linespace.inject_rays == ld.inject_rays);
     CHECK(all.calls >= 2);
     printf("%u reports for %llu paths\n", all.calls, (unsigned long long)ld.inject_rays);
@@ -87,7 +82,7 @@ int main(void)
     il_linespace_desc fewer = ld;
     fewer.inject_rays = part.stopped_at;
     il_image asked = render(s, fewer, NULL, &st);
-    CHECK(same(&stopped, &asked));
+    CHECK(images_identical(&stopped, &asked));
     CHECK(image_mean(&stopped, 1) > 0.0);
 
     watcher first = {.stop_at = 0};

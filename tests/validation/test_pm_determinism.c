@@ -6,11 +6,6 @@
 #define W 32
 #define H 32
 
-static bool same(const il_image *a, const il_image *b)
-{
-    return a->rgb && b->rgb && memcmp(a->rgb, b->rgb, sizeof(float) * 3 * W * H) == 0;
-}
-
 static void check_method(const il_scene *s, il_method method, il_photon_desc pd)
 {
     il_render_desc rd = {.method = method, .spp = 3, .threads = 1, .seed = 5, .photon = &pd};
@@ -20,8 +15,8 @@ static void check_method(const il_scene *s, il_method method, il_photon_desc pd)
     rd.seed = 6;
     il_image other = render_desc_image(s, W, H, &rd, NULL);
     CHECK(image_finite(&one) && image_mean(&one, 1) > 0.0);
-    CHECK(same(&one, &two));
-    CHECK(!same(&one, &other));
+    CHECK(images_identical(&one, &two));
+    CHECK(!images_identical(&one, &other));
     il_image_free(&one);
     il_image_free(&two);
     il_image_free(&other);

@@ -45,11 +45,6 @@ static bool on_step(const il_photon_progress *p, void *user)
     return true;
 }
 
-static bool same(const il_image *a, const il_image *b)
-{
-    return a->rgb && b->rgb && memcmp(a->rgb, b->rgb, sizeof(float) * 3 * W * H) == 0;
-}
-
 static il_image render(const il_scene *s, il_photon_desc pd, watcher *w, il_render_stats *st)
 {
     if (w) {
@@ -83,7 +78,7 @@ int main(void)
     il_image plain = render(s, pd, NULL, &st);
     watcher all = {.stop_phase = (il_photon_phase)99};
     il_image watched = render(s, pd, &all, &st);
-    CHECK(same(&plain, &watched));
+    CHECK(images_identical(&plain, &watched));
     CHECK(!st.photon.stopped && st.photon.emitted == pd.photons);
     CHECK(all.calls >= 4 && all.irradiance_calls >= 1);
     CHECK(all.last_phase == IL_PHOTON_IRRADIANCE && all.last_total > 0);
@@ -101,7 +96,7 @@ int main(void)
     il_photon_desc fewer = no_irr;
     fewer.photons = st.photon.emitted;
     il_image asked = render(s, fewer, NULL, &st);
-    CHECK(same(&stopped, &asked));
+    CHECK(images_identical(&stopped, &asked));
     CHECK(image_mean(&stopped, 1) > 0.0);
 
     /* Stopped as the irradiance starts: all photons, full estimates. */
@@ -109,7 +104,7 @@ int main(void)
     il_image no_table = render(s, pd, &irradiance, &st);
     CHECK(st.photon.stopped && st.photon.emitted == pd.photons);
     il_image full = render(s, no_irr, NULL, &st);
-    CHECK(same(&no_table, &full));
+    CHECK(images_identical(&no_table, &full));
 
     il_image_free(&plain);
     il_image_free(&watched);

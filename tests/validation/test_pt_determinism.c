@@ -46,11 +46,6 @@ static il_image render_public(const il_scene *s, const il_render_desc *rd, il_re
     return img;
 }
 
-static bool same(const il_image *a, const il_image *b)
-{
-    return a->rgb && b->rgb && memcmp(a->rgb, b->rgb, sizeof(float) * 3 * W * H) == 0;
-}
-
 static void check_threads(const il_scene *s, il_sampler_type sampler, il_filter_type filter)
 {
     il_render_desc rd = {.spp = 8, .seed = 77, .threads = 1, .sampler = sampler, .filter = filter};
@@ -60,8 +55,8 @@ static void check_threads(const il_scene *s, il_sampler_type sampler, il_filter_
     il_image b = render_public(s, &rd, &st2);
     rd.seed = 78;
     il_image c = render_public(s, &rd, &st3);
-    CHECK(same(&a, &b));
-    CHECK(!same(&a, &c));
+    CHECK(images_identical(&a, &b));
+    CHECK(!images_identical(&a, &c));
     CHECK(st1.rays == st2.rays && st1.rays > (uint64_t)W * H * 8);
     CHECK(st1.spp == 8 && st2.spp == 8);
     CHECK(image_finite(&a) && st1.nonfinite_samples == 0);
