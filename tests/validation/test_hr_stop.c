@@ -13,41 +13,36 @@
  *     falls): a valid, finite solution of at most the converged energy;
  *   - a stop that comes after the last iteration is not called one. */
 #include <math.h>
-#include <pthread.h>
 #include "hr_scenes.h"
+#include "step_watch.h"
 
 typedef struct watcher {
     il_hr_phase stop_phase;        /* stop at the first report of this phase ... */
     uint32_t stop_iterations;      /* ... with this many iterations done ... */
     uint32_t stop_report;          /* ... and this many such reports before it */
     uint32_t seen;                 /* reports matching phase and iterations */
-    uint32_t calls;
-    bool in_order, on_caller;
+    step_watch sw;
     il_hr_phase last_phase;
     uint32_t last_iterations;
     double last_seconds, first_change;
-    pthread_t caller;
 } watcher;
 
 static bool on_step(const il_hr_progress *p, void *user)
 {
     watcher *w = user;
-    if (!pthread_equal(pthread_self(), w->caller))
-        w->on_caller = false;
-    if (w->calls > 0) {
-        /* Phases and iterations never go back; time never goes back. */
+    /* The first report is the linking's; then phases and iterations never
+     * go back, nor does time. */
+    bool in_order = p->phase == IL_HR_LINKING;
+    if (w->sw.calls > 0) {
         bool later = p->iterations > w->last_iterations ||
                      (p->iterations == w->last_iterations && p->phase >= w->last_phase) ||
                      (p->phase == IL_HR_REFINING && w->last_phase == IL_HR_ITERATED &&
                       p->iterations == w->last_iterations);
-        if (!later || p->seconds < w->last_seconds || p->roots_done > p->num_roots)
-            w->in_order = false;
-    } else if (p->phase != IL_HR_LINKING) {
-        w->in_order = false;
+        in_order = later && p->seconds >= w->last_seconds && p->roots_done <= p->num_roots;
     }
+    step_watch_report(&w->sw, in_order);
     if (p->phase == IL_HR_ITERATED && p->iterations == 1)
         w->first_change = p->energy_change;
-    w->calls++;
     w->last_phase = p->phase;
     w->last_iterations = p->iterations;
     w->last_seconds = p->seconds;
@@ -79,9 +74,8 @@ static void add_leaf(const il_hr_elem *e, void *user)
 static outcome solve(const il_scene *s, il_hr_desc hd, watcher w, int threads)
 {
     outcome o = {.emission_only = true, .finite = true};
-    w.in_order = w.on_caller = true;
-    w.caller = pthread_self();
     o.w = w;
+    step_watch_begin(&o.w.sw);
     hd.on_step = on_step;
     hd.on_step_user = &o.w;
     il_render_desc rd = {.method = IL_METHOD_HR, .threads = threads, .hr = &hd};
@@ -91,8 +85,7 @@ static outcome solve(const il_scene *s, il_hr_desc hd, watcher w, int threads)
     for (uint32_t i = 0; i < c.solver.num_roots; i++)
         hr_visit_leaves(&c.solver.roots[i], add_leaf, &o);
     hr_case_free(&c);
-    CHECK(o.w.in_order);
-    CHECK(o.w.on_caller);
+    step_watch_check(&o.w.sw);
     CHECK(o.finite);
     return o;
 }
@@ -109,7 +102,7 @@ int main(void)
     CHECK(!full.stats.stopped);
     CHECK(full.stats.iterations >= 3);
     CHECK(full.reflected > 0.0);
-    CHECK(full.w.calls >= 1 + 2 * full.stats.iterations);
+    CHECK(full.w.sw.calls >= 1 + 2 * full.stats.iterations);
     CHECK(full.w.last_phase == IL_HR_ITERATED && full.w.last_iterations == full.stats.iterations);
     CHECK_NEAR(full.w.first_change, 1.0, 0.0);
 
@@ -117,7 +110,7 @@ int main(void)
     outcome linking = solve(s, hd, (watcher){.stop_phase = IL_HR_LINKING}, 2);
     CHECK(linking.stats.stopped && linking.stats.iterations == 0);
     CHECK(linking.emission_only);
-    CHECK(linking.w.calls == 1);
+    CHECK(linking.w.sw.calls == 1);
 
     /* Stopped at the start of the first refinement: the same. */
     outcome refine1 = solve(s, hd, (watcher){.stop_phase = IL_HR_REFINING}, 2);
@@ -169,8 +162,8 @@ int main(void)
     /* Through il_render: the stopped solution is rendered, and finite. */
     il_film *film = NULL;
     CHECK_OK(il_film_create(16, 16, &film, &g_err), &g_err);
-    watcher w = {.stop_phase = IL_HR_ITERATED, .stop_iterations = 1, .in_order = true,
-                 .on_caller = true, .caller = pthread_self()};
+    watcher w = {.stop_phase = IL_HR_ITERATED, .stop_iterations = 1};
+    step_watch_begin(&w.sw);
     il_hr_desc rh = hd;
     rh.on_step = on_step;
     rh.on_step_user = &w;
@@ -178,12 +171,10 @@ int main(void)
     il_render_stats rs;
     CHECK_OK(il_render(s, film, &rd, &rs, &g_err), &g_err);
     CHECK(rs.hr.stopped && rs.hr.iterations == 1);
+    step_watch_check(&w.sw);
     il_image img = {0};
     CHECK_OK(il_film_resolve(film, &img, &g_err), &g_err);
-    bool finite = true;
-    for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
-        finite = finite && isfinite(img.rgb[i]);
-    CHECK(finite);
+    CHECK(image_finite(&img));
     il_image_free(&img);
     il_film_release(film);
     il_scene_release(s);

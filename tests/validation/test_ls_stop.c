@@ -8,28 +8,22 @@
  *   - stopped at the first report, nothing is injected and the render still
  *     completes (the Linespace reads as no light; lookups that trace on
  *     still find it). */
-#include <pthread.h>
 #include "mesh_compare.h"
+#include "step_watch.h"
 
 #define W 32
 #define H 32
 
 typedef struct watcher {
     uint64_t stop_at;              /* stop at the first report with injected >= this */
-    uint32_t calls;
-    bool in_order, on_caller;
+    step_watch sw;
     uint64_t last, stopped_at;
-    pthread_t caller;
 } watcher;
 
 static bool on_step(const il_linespace_progress *p, void *user)
 {
     watcher *w = user;
-    if (!pthread_equal(pthread_self(), w->caller))
-        w->on_caller = false;
-    if (p->injected > p->total || (w->calls > 0 && p->injected < w->last))
-        w->in_order = false;
-    w->calls++;
+    step_watch_report(&w->sw, p->injected <= p->total && (w->sw.calls == 0 || p->injected >= w->last));
     w->last = p->injected;
     if (p->injected >= w->stop_at) {
         w->stopped_at = p->injected;
@@ -41,8 +35,7 @@ static bool on_step(const il_linespace_progress *p, void *user)
 static il_image render(const il_scene *s, il_linespace_desc ld, watcher *w, il_render_stats *st)
 {
     if (w) {
-        w->in_order = w->on_caller = true;
-        w->caller = pthread_self();
+        step_watch_begin(&w->sw);
         ld.on_step = on_step;
         ld.on_step_user = w;
     }
@@ -50,10 +43,8 @@ static il_image render(const il_scene *s, il_linespace_desc ld, watcher *w, il_r
                          .seed = 3, .linespace = &ld};
     il_image img = render_desc_image(s, W, H, &rd, st);
     CHECK(image_finite(&img));
-    if (w) {
-        CHECK(w->in_order);
-        CHECK(w->on_caller);
-    }
+    if (w)
+        step_watch_check(&w->sw);
     return img;
 }
 
@@ -70,8 +61,8 @@ int main(void)
     il_image watched = render(s, ld, &all, &st);
     CHECK(images_identical(&plain, &watched));
     CHECK(!st.linespace.stopped && st.linespace.inject_rays == ld.inject_rays);
-    CHECK(all.calls >= 2);
-    printf("%u reports for %llu paths\n", all.calls, (unsigned long long)ld.inject_rays);
+    CHECK(all.sw.calls >= 2);
+    printf("%u reports for %llu paths\n", all.sw.calls, (unsigned long long)ld.inject_rays);
 
     watcher part = {.stop_at = ld.inject_rays / 3};
     il_image stopped = render(s, ld, &part, &st);
@@ -87,7 +78,7 @@ int main(void)
 
     watcher first = {.stop_at = 0};
     il_image none = render(s, ld, &first, &st);
-    CHECK(st.linespace.stopped && st.linespace.inject_rays == 0 && first.calls == 1);
+    CHECK(st.linespace.stopped && st.linespace.inject_rays == 0 && first.sw.calls == 1);
 
     il_image_free(&plain);
     il_image_free(&watched);

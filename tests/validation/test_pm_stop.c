@@ -9,8 +9,8 @@
  *   - stopped while precomputing irradiance: every photon is kept and the
  *     film is the one without precomputed irradiance;
  *   - a report that never asks to stop leaves the film as without on_step. */
-#include <pthread.h>
 #include "mesh_compare.h"
+#include "step_watch.h"
 
 #define W 32
 #define H 32
@@ -18,22 +18,18 @@
 typedef struct watcher {
     il_photon_phase stop_phase;
     uint64_t stop_at;              /* stop at the first report of stop_phase with done >= this */
-    uint32_t calls, irradiance_calls;
-    bool in_order, on_caller;
+    step_watch sw;
+    uint32_t irradiance_calls;
     il_photon_phase last_phase;
     uint64_t last_done, last_total, stopped_at;
-    pthread_t caller;
 } watcher;
 
 static bool on_step(const il_photon_progress *p, void *user)
 {
     watcher *w = user;
-    if (!pthread_equal(pthread_self(), w->caller))
-        w->on_caller = false;
-    if (p->done > p->total || (w->calls > 0 && (p->phase < w->last_phase ||
-                                                (p->phase == w->last_phase && p->done < w->last_done))))
-        w->in_order = false;
-    w->calls++;
+    bool later = w->sw.calls == 0 || p->phase > w->last_phase ||
+                 (p->phase == w->last_phase && p->done >= w->last_done);
+    step_watch_report(&w->sw, p->done <= p->total && later);
     w->irradiance_calls += p->phase == IL_PHOTON_IRRADIANCE;
     w->last_phase = p->phase;
     w->last_done = p->done;
@@ -48,8 +44,7 @@ static bool on_step(const il_photon_progress *p, void *user)
 static il_image render(const il_scene *s, il_photon_desc pd, watcher *w, il_render_stats *st)
 {
     if (w) {
-        w->in_order = w->on_caller = true;
-        w->caller = pthread_self();
+        step_watch_begin(&w->sw);
         pd.on_step = on_step;
         pd.on_step_user = w;
     }
@@ -57,10 +52,8 @@ static il_image render(const il_scene *s, il_photon_desc pd, watcher *w, il_rend
                          .photon = &pd};
     il_image img = render_desc_image(s, W, H, &rd, st);
     CHECK(image_finite(&img));
-    if (w) {
-        CHECK(w->in_order);
-        CHECK(w->on_caller);
-    }
+    if (w)
+        step_watch_check(&w->sw);
     return img;
 }
 
@@ -80,9 +73,9 @@ int main(void)
     il_image watched = render(s, pd, &all, &st);
     CHECK(images_identical(&plain, &watched));
     CHECK(!st.photon.stopped && st.photon.emitted == pd.photons);
-    CHECK(all.calls >= 4 && all.irradiance_calls >= 1);
+    CHECK(all.sw.calls >= 4 && all.irradiance_calls >= 1);
     CHECK(all.last_phase == IL_PHOTON_IRRADIANCE && all.last_total > 0);
-    printf("%u reports, %u of them for the irradiance\n", all.calls, all.irradiance_calls);
+    printf("%u reports, %u of them for the irradiance\n", all.sw.calls, all.irradiance_calls);
 
     /* Stopped while tracing, part-way. */
     watcher tracing = {.stop_phase = IL_PHOTON_TRACING, .stop_at = pd.photons / 3};

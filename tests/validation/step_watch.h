@@ -1,0 +1,44 @@
+/* What the tests of the set-up callbacks (il_hr_desc.on_step,
+ * il_photon_desc.on_step, il_linespace_desc.on_step) check of every report:
+ * it comes on the thread that started the render, and in order. */
+#ifndef IL_TESTS_STEP_WATCH_H
+#define IL_TESTS_STEP_WATCH_H
+
+#include <pthread.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "check.h"
+
+typedef struct step_watch {
+    pthread_t caller;
+    bool on_caller, in_order;
+    uint32_t calls;                /* reports so far */
+} step_watch;
+
+/* Before the render, on its calling thread. */
+static inline void step_watch_begin(step_watch *w)
+{
+    w->caller = pthread_self();
+    w->on_caller = w->in_order = true;
+    w->calls = 0;
+}
+
+/* In the callback: one report, in order or not after the previous one. */
+static inline void step_watch_report(step_watch *w, bool in_order)
+{
+    if (!pthread_equal(pthread_self(), w->caller))
+        w->on_caller = false;
+    if (!in_order)
+        w->in_order = false;
+    w->calls++;
+}
+
+/* After the render. */
+static inline void step_watch_check(const step_watch *w)
+{
+    CHECK(w->in_order);
+    CHECK(w->on_caller);
+}
+
+#endif
