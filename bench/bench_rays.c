@@ -2,15 +2,19 @@
  *
  *   bench_rays [SCENE] [--width W] [--height H] [--spp N]
  *
- * Records the rays of one path per pixel traced as the path tracer traces
- * them (camera, BSDF-sampled bounces, shadow rays to sampled lights), then
- * times the same batch cast (a) by Embree directly (rtcIntersect1/rtcOccluded1
- * on a scene built here), (b) through il_trace_closest/occluded, (c) through
- * the stream calls, each with 1 and 2 threads (best of three); last it
- * renders the scene with the path tracer (max depth 8) five times, each
- * right after an Embree-alone run, and reports its best rays/s and its
- * share of Embree's own rate: best over best, and the median of the five
- * pairs' ratios.  It prints figures and never judges them. */
+ * Records the rays the path tracer itself casts in one pass of one sample
+ * per pixel (max depth 8, one thread), batch by batch as it hands them to
+ * the ray core: every call of il_trace_closest_n(_coherent) and
+ * il_trace_occluded_n, caught by the linker (-Wl,--wrap, bench/CMakeLists.txt).
+ * Then it times the same batches, in the same order, cast (a) by Embree
+ * directly (rtcIntersect1/rtcOccluded1 ray by ray on a scene built here),
+ * (b) through il_trace_closest/occluded, (c) through the stream calls, each
+ * with 1 and 2 threads (best of three; two threads take whole batches).
+ * Last it renders the scene with the path tracer (max depth 8, N samples
+ * per pixel) five times, each right after an Embree-alone run, and reports
+ * its best rays/s and its share of Embree's own rate: best over best, and
+ * the median of the five pairs' ratios.  It prints figures and never
+ * judges them. */
 #include <embree3/rtcore.h>
 #include <omp.h>
 #include <stdio.h>
@@ -18,11 +22,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "core/rng.h"
-#include "core/sampling.h"
-#include "scene/bsdf.h"
-#include "scene/camera.h"
-#include "scene/lights.h"
 #include "scene/scene.h"
 #include "trace/trace.h"
 
@@ -33,78 +32,119 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+typedef enum { CLOSEST, CLOSEST_COHERENT, OCCLUDED } batch_kind;
+
+/* One call of the path tracer's: rays[start .. start+n-1]. */
 typedef struct batch {
-    il_ray *closest;   /* camera + bounce rays */
-    size_t num_closest;
-    il_ray *shadow;
-    size_t num_shadow;
+    size_t start, n;
+    batch_kind kind;
 } batch;
 
-/* Follows one path per pixel the way the path tracer does (camera ray, then
- * per vertex a shadow ray to a sampled light point and a BSDF-sampled bounce,
- * Russian roulette after the third bounce, at most 8 bounces) and records
- * every ray it casts: the batch has the path tracer's own mix of coherent
- * and incoherent rays. */
-static void make_batch(const il_scene *scene, uint32_t w, uint32_t h, batch *b)
+typedef struct recording {
+    il_ray *rays;
+    size_t num_rays, cap_rays;
+    batch *batches;
+    size_t num_batches, cap_batches;
+    size_t per_kind[3];
+} recording;
+
+/* Set only while the recording render runs, on one thread. */
+static recording *g_rec;
+
+static void grow(void **p, size_t *cap, size_t need, size_t size)
 {
-    size_t cap_c = (size_t)w * h * 4, cap_s = (size_t)w * h * 4;
-    b->closest = malloc(cap_c * sizeof(il_ray));
-    b->shadow = malloc(cap_s * sizeof(il_ray));
-    b->num_closest = b->num_shadow = 0;
-    il_camera cam;
-    il_camera_desc cd;
-    il_scene_get_camera(scene, &cd);
-    il_camera_init(&cam, &cd, w, h);
-    il_pcg32 rng = il_pcg32_seed(1, 2);
-    for (uint32_t y = 0; y < h; y++)
-        for (uint32_t x = 0; x < w; x++) {
-            il_ray ray = {.org = cam.position, .tmin = 0.0f, .tmax = INFINITY,
-                          .dir = il_camera_ray_dir(&cam, x + il_pcg32_float(&rng), y + il_pcg32_float(&rng))};
-            il_vec3 beta = v3s(1.0f);
-            for (int depth = 0; depth < 9; depth++) {
-                if (b->num_closest == cap_c) {
-                    cap_c *= 2;
-                    b->closest = realloc(b->closest, cap_c * sizeof(il_ray));
-                }
-                b->closest[b->num_closest++] = ray;
-                il_hit hit;
-                if (!il_trace_closest(scene->tracer, &ray, &hit) || depth == 8)
-                    break;
-                il_surface s;
-                il_scene_surface(scene, hit.mesh, hit.prim, hit.b1, hit.b2, &s);
-                il_bsdf bsdf;
-                il_bsdf_init(&bsdf, scene, &s);
-                il_vec3 wo = v3_neg(ray.dir);
-                il_light_sample ls;
-                if (!il_bsdf_is_delta(&bsdf) &&
-                    il_light_sample_at(scene, s.p, il_pcg32_float(&rng),
-                                       v2(il_pcg32_float(&rng), il_pcg32_float(&rng)), &ls)) {
-                    if (b->num_shadow == cap_s) {
-                        cap_s *= 2;
-                        b->shadow = realloc(b->shadow, cap_s * sizeof(il_ray));
-                    }
-                    if (isfinite(ls.dist))
-                        b->shadow[b->num_shadow++] = il_shadow_ray(scene->tracer, s.p, s.ng, ls.p, ls.n);
-                    else
-                        b->shadow[b->num_shadow++] = (il_ray){
-                            .org = il_offset_origin(scene->tracer, s.p, s.ng, ls.wi), .dir = ls.wi,
-                            .tmin = 0.0f, .tmax = INFINITY};
-                }
-                il_bsdf_sample bs;
-                if (!il_bsdf_sample_dir(&bsdf, wo, il_pcg32_float(&rng),
-                                        v2(il_pcg32_float(&rng), il_pcg32_float(&rng)), &bs))
-                    break;
-                beta = v3_mul(beta, bs.weight);
-                if (depth >= 3) {
-                    float q = fminf(v3_max_comp(beta), 0.95f);
-                    if (!(il_pcg32_float(&rng) < q))
-                        break;
-                    beta = v3_scale(beta, 1.0f / q);
-                }
-                ray = (il_ray){.org = il_offset_origin(scene->tracer, s.p, s.ng, bs.wi), .dir = bs.wi,
-                               .tmin = 0.0f, .tmax = INFINITY};
-            }
-        }
+    if (need <= *cap)
+        return;
+    size_t c = *cap ? *cap : 1024;
+    while (c < need)
+        c *= 2;
+    void *q = realloc(*p, c * size);
+    if (!q) {
+        fprintf(stderr, "bench_rays: out of memory recording the rays\n");
+        exit(1);
+    }
+    *p = q;
+    *cap = c;
+}
+
+static void record(const il_ray *rays, size_t n, batch_kind kind)
+{
+    recording *r = g_rec;
+    if (!r || n == 0)
+        return;
+    grow((void **)&r->rays, &r->cap_rays, r->num_rays + n, sizeof(il_ray));
+    grow((void **)&r->batches, &r->cap_batches, r->num_batches + 1, sizeof(batch));
+    r->batches[r->num_batches++] = (batch){.start = r->num_rays, .n = n, .kind = kind};
+    memcpy(r->rays + r->num_rays, rays, n * sizeof(il_ray));
+    r->num_rays += n;
+    r->per_kind[kind] += n;
+}
+
+/* The linker sends the library's calls of these here (--wrap). */
+void __real_il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n);
+void __real_il_trace_closest_n_coherent(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n);
+void __real_il_trace_occluded_n(const il_tracer *t, const il_ray *rays, bool *occluded, size_t n);
+bool __real_il_trace_closest(const il_tracer *t, const il_ray *ray, il_hit *hit);
+bool __real_il_trace_occluded(const il_tracer *t, const il_ray *ray);
+void __wrap_il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n);
+void __wrap_il_trace_closest_n_coherent(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n);
+void __wrap_il_trace_occluded_n(const il_tracer *t, const il_ray *rays, bool *occluded, size_t n);
+bool __wrap_il_trace_closest(const il_tracer *t, const il_ray *ray, il_hit *hit);
+bool __wrap_il_trace_occluded(const il_tracer *t, const il_ray *ray);
+
+void __wrap_il_trace_closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n)
+{
+    record(rays, n, CLOSEST);
+    __real_il_trace_closest_n(t, rays, hits, n);
+}
+
+void __wrap_il_trace_closest_n_coherent(const il_tracer *t, const il_ray *rays, il_hit *hits, size_t n)
+{
+    record(rays, n, CLOSEST_COHERENT);
+    __real_il_trace_closest_n_coherent(t, rays, hits, n);
+}
+
+void __wrap_il_trace_occluded_n(const il_tracer *t, const il_ray *rays, bool *occluded, size_t n)
+{
+    record(rays, n, OCCLUDED);
+    __real_il_trace_occluded_n(t, rays, occluded, n);
+}
+
+bool __wrap_il_trace_closest(const il_tracer *t, const il_ray *ray, il_hit *hit)
+{
+    record(ray, 1, CLOSEST);
+    return __real_il_trace_closest(t, ray, hit);
+}
+
+bool __wrap_il_trace_occluded(const il_tracer *t, const il_ray *ray)
+{
+    record(ray, 1, OCCLUDED);
+    return __real_il_trace_occluded(t, ray);
+}
+
+/* One pass of the path tracer at one sample per pixel, its rays kept. */
+static bool record_pass(const il_scene *scene, uint32_t w, uint32_t h, recording *rec)
+{
+    il_error err = {0};
+    il_film *film = NULL;
+    if (il_film_create(w, h, &film, &err) != IL_OK) {
+        fprintf(stderr, "bench_rays: %s\n", err.message);
+        return false;
+    }
+    il_render_desc rd = {.spp = 1, .max_depth = 8, .threads = 1};
+    il_render_stats st;
+    g_rec = rec;
+    il_status s = il_render(scene, film, &rd, &st, &err);
+    g_rec = NULL;
+    il_film_release(film);
+    if (s != IL_OK) {
+        fprintf(stderr, "bench_rays: %s\n", err.message);
+        return false;
+    }
+    if ((double)rec->num_rays != (double)st.rays)
+        printf("warning: %zu rays recorded, the path tracer counted %.0f\n", rec->num_rays,
+               (double)st.rays);
+    return true;
 }
 
 /* Embree alone: a device and scene of our own, the same geometry. */
@@ -128,79 +168,98 @@ static RTCScene embree_scene(RTCDevice dev, const il_scene *scene)
     return s;
 }
 
-enum { CHUNK = 256 };
-
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
 
-static double time_embree(RTCScene s, const batch *b, int threads, unsigned *checksum)
+static void to_rtc(const il_ray *r, struct RTCRay *o)
+{
+    *o = (struct RTCRay){r->org.x, r->org.y, r->org.z, r->tmin, r->dir.x, r->dir.y, r->dir.z,
+                         0.0f, r->tmax, 0xffffffffu, 0, 0};
+}
+
+/* Each caster takes the batches in the recorded order, whole batches per
+ * thread; sum counts the hits, which must agree between casters. */
+static double time_embree(RTCScene s, const recording *rec, int threads, unsigned *checksum)
 {
     unsigned sum = 0;
     double t0 = now();
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : sum)
-    for (size_t i = 0; i < b->num_closest; i++) {
-        struct RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        const il_ray *r = &b->closest[i];
-        struct RTCRayHit rh = {
-            .ray = {r->org.x, r->org.y, r->org.z, r->tmin, r->dir.x, r->dir.y, r->dir.z, 0.0f,
-                    r->tmax, 0xffffffffu, 0, 0},
-            .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .instID = {RTC_INVALID_GEOMETRY_ID}}};
-        rtcIntersect1(s, &ctx, &rh);
-        sum += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    }
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : sum)
-    for (size_t i = 0; i < b->num_shadow; i++) {
-        struct RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        const il_ray *r = &b->shadow[i];
-        struct RTCRay ray = {r->org.x, r->org.y, r->org.z, r->tmin, r->dir.x, r->dir.y, r->dir.z,
-                             0.0f, r->tmax, 0xffffffffu, 0, 0};
-        rtcOccluded1(s, &ctx, &ray);
-        sum += ray.tfar < 0.0f;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : sum)
+    for (size_t b = 0; b < rec->num_batches; b++) {
+        const batch *bt = &rec->batches[b];
+        for (size_t i = bt->start; i < bt->start + bt->n; i++) {
+            struct RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            if (bt->kind == OCCLUDED) {
+                struct RTCRay ray;
+                to_rtc(&rec->rays[i], &ray);
+                rtcOccluded1(s, &ctx, &ray);
+                sum += ray.tfar < 0.0f;
+            } else {
+                struct RTCRayHit rh;
+                to_rtc(&rec->rays[i], &rh.ray);
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(s, &ctx, &rh);
+                sum += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+        }
     }
     *checksum = sum;
     return now() - t0;
 }
 
-static double time_wrapper(const il_tracer *t, const batch *b, int threads, unsigned *checksum)
+static double time_wrapper(const il_tracer *t, const recording *rec, int threads, unsigned *checksum)
 {
     unsigned sum = 0;
     double t0 = now();
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : sum)
-    for (size_t i = 0; i < b->num_closest; i++) {
-        il_hit hit;
-        sum += il_trace_closest(t, &b->closest[i], &hit);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : sum)
+    for (size_t b = 0; b < rec->num_batches; b++) {
+        const batch *bt = &rec->batches[b];
+        for (size_t i = bt->start; i < bt->start + bt->n; i++) {
+            il_hit hit;
+            sum += bt->kind == OCCLUDED ? il_trace_occluded(t, &rec->rays[i])
+                                        : il_trace_closest(t, &rec->rays[i], &hit);
+        }
     }
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : sum)
-    for (size_t i = 0; i < b->num_shadow; i++)
-        sum += il_trace_occluded(t, &b->shadow[i]);
     *checksum = sum;
     return now() - t0;
 }
 
-static double time_streams(const il_tracer *t, const batch *b, int threads, unsigned *checksum)
+enum { MAX_BATCH = 4096 };
+
+static double time_streams(const il_tracer *t, const recording *rec, int threads, unsigned *checksum)
 {
     unsigned sum = 0;
     double t0 = now();
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : sum)
-    for (size_t c = 0; c < b->num_closest; c += CHUNK) {
-        il_hit hits[CHUNK];
-        size_t m = b->num_closest - c < CHUNK ? b->num_closest - c : CHUNK;
-        il_trace_closest_n(t, b->closest + c, hits, m);
-        for (size_t i = 0; i < m; i++)
-            sum += hits[i].mesh != IL_HIT_NONE;
-    }
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : sum)
-    for (size_t c = 0; c < b->num_shadow; c += CHUNK) {
-        bool occ[CHUNK];
-        size_t m = b->num_shadow - c < CHUNK ? b->num_shadow - c : CHUNK;
-        il_trace_occluded_n(t, b->shadow + c, occ, m);
-        for (size_t i = 0; i < m; i++)
-            sum += occ[i];
+#pragma omp parallel num_threads(threads) reduction(+ : sum)
+    {
+        il_hit *hits = malloc(MAX_BATCH * sizeof *hits);
+        bool *occ = malloc(MAX_BATCH * sizeof *occ);
+#pragma omp for schedule(dynamic, 1)
+        for (size_t b = 0; b < rec->num_batches; b++) {
+            const batch *bt = &rec->batches[b];
+            for (size_t c = 0; c < bt->n; c += MAX_BATCH) {
+                size_t m = bt->n - c < MAX_BATCH ? bt->n - c : MAX_BATCH;
+                const il_ray *rays = rec->rays + bt->start + c;
+                if (bt->kind == OCCLUDED) {
+                    il_trace_occluded_n(t, rays, occ, m);
+                    for (size_t i = 0; i < m; i++)
+                        sum += occ[i];
+                } else {
+                    if (bt->kind == CLOSEST_COHERENT)
+                        il_trace_closest_n_coherent(t, rays, hits, m);
+                    else
+                        il_trace_closest_n(t, rays, hits, m);
+                    for (size_t i = 0; i < m; i++)
+                        sum += hits[i].mesh != IL_HIT_NONE;
+                }
+            }
+        }
+        free(hits);
+        free(occ);
     }
     *checksum = sum;
     return now() - t0;
@@ -226,11 +285,14 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_rays: %s\n", err.message);
         return 1;
     }
-    batch b;
-    make_batch(scene, w, h, &b);
-    size_t total = b.num_closest + b.num_shadow;
-    printf("scene %s: %zu closest-hit rays (camera + bounces), %zu shadow rays\n", name,
-           b.num_closest, b.num_shadow);
+    recording rec = {0};
+    if (!record_pass(scene, w, h, &rec))
+        return 1;
+    size_t total = rec.num_rays;
+    printf("scene %s: the path tracer's rays of one sample per pixel: %zu camera, %zu other "
+           "closest-hit, %zu shadow, in %zu batches\n",
+           name, rec.per_kind[CLOSEST_COHERENT], rec.per_kind[CLOSEST], rec.per_kind[OCCLUDED],
+           rec.num_batches);
 
     RTCDevice dev = rtcNewDevice("verbose=0");
     RTCScene es = embree_scene(dev, scene);
@@ -242,9 +304,9 @@ int main(int argc, char **argv)
         double te = 1e30, tw = 1e30, ts = 1e30;
         for (int r = 0; r < reps; r++) { /* best of three: the machine is shared */
             double t;
-            if ((t = time_embree(es, &b, threads, &c1)) < te) te = t;
-            if ((t = time_wrapper(scene->tracer, &b, threads, &c2)) < tw) tw = t;
-            if ((t = time_streams(scene->tracer, &b, threads, &c3)) < ts) ts = t;
+            if ((t = time_embree(es, &rec, threads, &c1)) < te) te = t;
+            if ((t = time_wrapper(scene->tracer, &rec, threads, &c2)) < tw) tw = t;
+            if ((t = time_streams(scene->tracer, &rec, threads, &c3)) < ts) ts = t;
         }
         if (c1 != c2 || c1 != c3)
             printf("warning: hit counts differ: embree %u, wrapper %u, streams %u\n", c1, c2, c3);
@@ -265,7 +327,7 @@ int main(int argc, char **argv)
         double share[PAIRS], rate = 0.0, seconds = 0.0, best_alone = embree_best[threads];
         for (int r = 0; r < PAIRS; r++) {
             unsigned c;
-            double alone = total / time_embree(es, &b, threads, &c);
+            double alone = total / time_embree(es, &rec, threads, &c);
             if (alone > best_alone)
                 best_alone = alone;
             il_render_stats st;
@@ -289,8 +351,8 @@ int main(int argc, char **argv)
     il_film_release(film);
     rtcReleaseScene(es);
     rtcReleaseDevice(dev);
-    free(b.closest);
-    free(b.shadow);
+    free(rec.rays);
+    free(rec.batches);
     il_scene_release(scene);
     return 0;
 }
