@@ -96,4 +96,8 @@ void cli_rsm_summary(const il_rsm_desc *d, const il_rsm_stats *s)
             (double)s->map_bytes / (1024.0 * 1024.0), samples,
             d->radius > 0.0f ? (double)d->radius : 1.5, d->shadow_test ? "on" : "off",
             (unsigned long long)s->shadow_rays, s->seconds_build, s->seconds_gather);
+    if (s->maps == 0) /* a valid render, but likely not what was meant */
+        fprintf(stderr, "illum: warning: rsm: the scene has no point, spot or directional light, "
+                        "so it has no map and the image holds direct light only (area lights and "
+                        "the environment get no map: docs/rsm.md)\n");
 }

@@ -30,6 +30,8 @@ expect_file rsm.exr "render rsm"
 expect_file rsm.png "render rsm"
 expect_stderr "illum: rsm: 1 maps of 64^2" "render rsm: summary line"
 expect_stderr "100 samples, r_max 1.5, shadow test off, 0 shadow rays" "render rsm: summary line"
+checks=$((checks + 1))
+grep -q "warning" err.txt && fail "render rsm: a warning with a spot light"
 for k in '"method":[[:space:]]*"rsm"' '"rsm":' '"resolution":[[:space:]]*64' '"samples":[[:space:]]*100' \
          '"radius":[[:space:]]*1.5' '"shadow_test":[[:space:]]*false' '"maps":[[:space:]]*1' \
          '"texels"' '"map_bytes"' '"gathered"' '"shadow_rays":[[:space:]]*0' '"seconds_build"' \
@@ -65,6 +67,9 @@ expect_exit 0 "rsm cornell (area light only)" -- "$ILLUM" render cornell --metho
     --height 16 --spp 1 -q -o cornell.pfm --stats cornell.json
 checks=$((checks + 1))
 grep -q '"maps":[[:space:]]*0' cornell.json || fail "cornell.json: an area light got a map"
+expect_exit 0 "rsm cornell, not quiet" -- "$ILLUM" render cornell --method rsm --width 16 \
+    --height 16 --spp 1 -o cornell.pfm
+expect_stderr "warning: rsm: the scene has no point, spot or directional light" "rsm cornell: the warning"
 
 # Bad values and options of the wrong method: exit 1 or 2, no output.
 expect_exit 1 "--rsm-size 0" -- "$ILLUM" render corner.json --method rsm --rsm-size 0 -q -o bad.exr
