@@ -67,6 +67,20 @@ int main(void)
     il_hr_solver_free(&solver);
     il_patch_mesh_release(roots);
 
+    /* A mesh of more than a thousand patches is judged by a sample of its
+     * rows first: far past the limit, it is refused on the estimate. */
+    il_scene *big = hr_room(false, true);
+    add_ball(big, v3(0.5f, 0.6f, 0.5f), 0.15f, 0);
+    CHECK_OK(il_scene_commit(big, &g_err), &g_err);
+    CHECK_OK(il_hr_root_mesh(big, &roots, &g_err), &g_err);
+    CHECK(roots->num_patches > 1024);
+    tight.link_memory_limit = 50 * sizeof(il_hr_link);
+    il_error be = {0};
+    CHECK(il_hr_solve(big, roots, &tight, &solver, &be) == IL_ERR_MEMORY);
+    CHECK(strstr(be.message, "patches make about") && strstr(be.message, "--method radiosity"));
+    il_patch_mesh_release(roots);
+    il_scene_release(big);
+
     /* HR bakes: every scene mesh, positive radiance on the lit walls, the
      * lamp's vertices at least its emission. */
     il_hr_desc one = {.vis_rays = 1, .max_iterations = 3};

@@ -14,6 +14,7 @@
  * built by one task at a time in a fixed order. */
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -106,6 +107,18 @@ static bool gathers(const il_hr_solver *s, const il_hr_elem *r)
     return !v3_is_zero(r->rho) && s->b_max > 0.0f;
 }
 
+/* How many roots root i links to initially: those facing it, when it
+ * gathers. */
+static uint64_t facing_row(const il_hr_solver *s, uint32_t i)
+{
+    if (!gathers(s, &s->roots[i]))
+        return 0;
+    uint64_t row = 0;
+    for (uint32_t j = 0; j < s->num_roots; j++)
+        row += j != i && il_hr_facing(s, &s->roots[i], &s->roots[j]);
+    return row;
+}
+
 static il_status setup(il_hr_solver *s, il_error *err)
 {
     uint32_t n = s->num_roots;
@@ -143,25 +156,50 @@ static il_status setup(il_hr_solver *s, il_error *err)
      * not fit is refused with a message instead of the system killing the
      * process part-way. */
     double link_bytes = (double)sizeof(il_hr_link), limit = (double)s->set.link_memory_limit;
-    uint64_t pairs = 0;
+    uint64_t max_pairs = (uint64_t)(limit / link_bytes), estimate = 0;
+    bool too_many = false;
     if ((double)n * (double)n * link_bytes > limit) { /* else every pair fits: no need */
-#pragma omp parallel for schedule(dynamic, 16) num_threads(nt) reduction(+ : pairs)
-        for (uint32_t i = 0; i < n; i++) {
-            il_hr_watch_poll(s);
-            if (!gathers(s, &s->roots[i]) || il_hr_stopping(s))
-                continue;
-            for (uint32_t j = 0; j < n; j++)
-                pairs += j != i && il_hr_facing(s, &s->roots[i], &s->roots[j]);
+        /* First the rows of SAMPLE_ROWS roots spread evenly over the list:
+         * a mesh far beyond the limit (the atrium's 146,787 patches make
+         * about 1e10 links) is refused in a second, not after testing
+         * 2e10 pairs.  Only a count eight times the limit is trusted. */
+        enum { SAMPLE_ROWS = 256 };
+        if (n > 4u * SAMPLE_ROWS) {
+            uint64_t sampled = 0;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(+ : sampled)
+            for (uint32_t k = 0; k < SAMPLE_ROWS; k++)
+                sampled += facing_row(s, (uint32_t)((uint64_t)k * n / SAMPLE_ROWS));
+            estimate = sampled * n / SAMPLE_ROWS;
+            too_many = estimate > 8u * max_pairs;
+        }
+        /* Then the exact count, which stops as soon as it passes the limit. */
+        _Atomic uint64_t pairs = 0;
+        if (!too_many) {
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nt)
+            for (uint32_t i = 0; i < n; i++) {
+                il_hr_watch_poll(s);
+                if (il_hr_stopping(s) || atomic_load(&pairs) > max_pairs)
+                    continue;
+                atomic_fetch_add(&pairs, facing_row(s, i));
+            }
+            too_many = atomic_load(&pairs) > max_pairs;
+            estimate = 0;
         }
     }
-    double bytes = (double)pairs * link_bytes;
-    if (bytes > limit)
+    if (too_many) {
+        char count[64];
+        if (estimate > 0)
+            snprintf(count, sizeof count, "about %llu", (unsigned long long)estimate);
+        else
+            snprintf(count, sizeof count, "more than %llu", (unsigned long long)max_pairs);
         return il_fail(err, IL_ERR_MEMORY,
-                       "hr: %u patches make %llu initial links (%.2f GB), more than half of this "
-                       "machine's memory: hierarchical radiosity links every pair of input polygons "
-                       "that face each other, so its memory grows with their number squared; use "
-                       "--method radiosity (or pt) for a mesh this large",
-                       n, (unsigned long long)pairs, bytes / 1e9);
+                       "hr: %u patches make %s initial links, more than fit in half of this "
+                       "machine's memory (%llu links, %.2f GB): hierarchical radiosity links "
+                       "every pair of input polygons that face each other, so its memory grows "
+                       "with their number squared; use --method radiosity (or pt) for a mesh "
+                       "this large",
+                       n, count, (unsigned long long)max_pairs, (double)max_pairs * link_bytes / 1e9);
+    }
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
     for (uint32_t i = 0; i < n; i++) {
         il_hr_pool *pool = &s->pools[omp_get_thread_num()];
