@@ -141,6 +141,11 @@ static bool record_pass(const il_scene *scene, uint32_t w, uint32_t h, recording
         fprintf(stderr, "bench_rays: %s\n", err.message);
         return false;
     }
+    if (rec->num_rays == 0) {
+        /* The calls inside a shared libillum do not reach the wrappers. */
+        fprintf(stderr, "bench_rays: no ray was recorded (bench_rays needs the static libillum)\n");
+        return false;
+    }
     if ((double)rec->num_rays != (double)st.rays)
         printf("warning: %zu rays recorded, the path tracer counted %.0f\n", rec->num_rays,
                (double)st.rays);
@@ -238,6 +243,10 @@ static double time_streams(const il_tracer *t, const recording *rec, int threads
     {
         il_hit *hits = malloc(MAX_BATCH * sizeof *hits);
         bool *occ = malloc(MAX_BATCH * sizeof *occ);
+        if (!hits || !occ) {
+            fprintf(stderr, "bench_rays: out of memory\n");
+            exit(1);
+        }
 #pragma omp for schedule(dynamic, 1)
         for (size_t b = 0; b < rec->num_batches; b++) {
             const batch *bt = &rec->batches[b];
