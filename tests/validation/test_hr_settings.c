@@ -1,6 +1,7 @@
 /* Hierarchical radiosity settings: defaults resolve, bad values give a
  * clear IL_ERR_INVALID through il_render and il_bake, and HR bakes. */
 #include <math.h>
+#include <stdlib.h>
 #include "hr_scenes.h"
 
 static void expect_bad(const il_scene *s, il_hr_desc hd, const char *needle)
@@ -48,9 +49,9 @@ int main(void)
     CHECK(strstr(e.message, "unknown method") != NULL);
     il_film_release(film);
 
-    /* The initial links are counted before any is made: a scene whose
-     * links exceed the limit (half the physical memory; here 100 bytes) is
-     * refused with a message saying why, and one that fits solves. */
+    /* The initial links are held to a limit (half the physical memory;
+     * here 100 bytes): a scene whose links exceed it is refused with a
+     * message saying why, and one that fits solves. */
     il_patch_mesh *roots = NULL;
     CHECK_OK(il_hr_root_mesh(s, &roots, &g_err), &g_err);
     il_hr_settings tight = set;
@@ -78,6 +79,15 @@ int main(void)
     il_error be = {0};
     CHECK(il_hr_solve(big, roots, &tight, &solver, &be) == IL_ERR_MEMORY);
     CHECK(strstr(be.message, "patches make about") && strstr(be.message, "--method radiosity"));
+    /* Within eight times the limit the estimate is not trusted: the links
+     * are made until their count passes the limit, then refused. */
+    const char *about = strstr(be.message, "about ");
+    unsigned long long estimate = about ? strtoull(about + 6, NULL, 10) : 0;
+    CHECK(estimate > 100);
+    tight.link_memory_limit = (size_t)(estimate / 4) * sizeof(il_hr_link);
+    il_error ce = {0};
+    CHECK(il_hr_solve(big, roots, &tight, &solver, &ce) == IL_ERR_MEMORY);
+    CHECK(strstr(ce.message, "patches make more than") && strstr(ce.message, "--method radiosity"));
     il_patch_mesh_release(roots);
     il_scene_release(big);
 

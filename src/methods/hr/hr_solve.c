@@ -152,70 +152,67 @@ static il_status setup(il_hr_solver *s, il_error *err)
     /* Initial links: every pair of roots that face each other (a receiver
      * that reflects nothing needs none).  Their number grows with the square
      * of the patch count (Hanrahan et al. 1991 link the input polygons, with
-     * no clustering), so they are counted first: a scene whose links would
-     * not fit is refused with a message instead of the system killing the
-     * process part-way. */
+     * no clustering), so it is held to a limit (half the physical memory): a
+     * scene whose links would not fit is refused with a message instead of
+     * the system killing the process part-way. */
     double link_bytes = (double)sizeof(il_hr_link), limit = (double)s->set.link_memory_limit;
-    uint64_t max_pairs = (uint64_t)(limit / link_bytes), estimate = 0;
-    bool too_many = false;
-    if ((double)n * (double)n * link_bytes > limit) { /* else every pair fits: no need */
-        /* First the rows of SAMPLE_ROWS roots spread evenly over the list:
-         * a mesh far beyond the limit (the atrium's 146,787 patches make
-         * about 1e10 links) is refused in a second, not after testing
-         * 2e10 pairs.  Only a count eight times the limit is trusted. */
-        enum { SAMPLE_ROWS = 256 };
-        if (n > 4u * SAMPLE_ROWS) {
-            uint64_t sampled = 0;
+    uint64_t max_links = (uint64_t)(limit / link_bytes), estimate = 0;
+    bool limited = (double)n * (double)n * link_bytes > limit; /* else every pair fits */
+    /* Far past the limit, the rows of SAMPLE_ROWS roots spread evenly over
+     * the list tell at once: the atrium's 146,787 patches make about 4e9
+     * links, refused in a second rather than after testing 2e10 pairs.  Only
+     * an estimate eight times the limit is trusted. */
+    enum { SAMPLE_ROWS = 256 };
+    if (limited && n > 4u * SAMPLE_ROWS) {
+        uint64_t sampled = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt) reduction(+ : sampled)
-            for (uint32_t k = 0; k < SAMPLE_ROWS; k++)
-                sampled += facing_row(s, (uint32_t)((uint64_t)k * n / SAMPLE_ROWS));
-            estimate = sampled * n / SAMPLE_ROWS;
-            too_many = estimate > 8u * max_pairs;
-        }
-        /* Then the exact count, which stops as soon as it passes the limit. */
-        _Atomic uint64_t pairs = 0;
-        if (!too_many) {
-#pragma omp parallel for schedule(dynamic, 16) num_threads(nt)
-            for (uint32_t i = 0; i < n; i++) {
-                il_hr_watch_poll(s);
-                if (il_hr_stopping(s) || atomic_load(&pairs) > max_pairs)
-                    continue;
-                atomic_fetch_add(&pairs, facing_row(s, i));
-            }
-            too_many = atomic_load(&pairs) > max_pairs;
+        for (uint32_t k = 0; k < SAMPLE_ROWS; k++)
+            sampled += facing_row(s, (uint32_t)((uint64_t)k * n / SAMPLE_ROWS));
+        estimate = sampled * n / SAMPLE_ROWS;
+        if (estimate <= 8u * max_links)
             estimate = 0;
+    }
+    /* Else the links are made with a running count that stops them as soon
+     * as it passes the limit (by at most a row per thread). */
+    _Atomic uint64_t made = 0;
+    bool too_many = estimate > 0;
+    if (!too_many) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+        for (uint32_t i = 0; i < n; i++) {
+            il_hr_pool *pool = &s->pools[omp_get_thread_num()];
+            il_hr_elem *r = &s->roots[i];
+            il_hr_watch_poll(s);
+            il_hr_watch_root_done(s);
+            if (!gathers(s, r) || il_hr_stopping(s) || (limited && atomic_load(&made) > max_links))
+                continue;
+            uint64_t row = 0;
+            for (uint32_t j = 0; j < n && !pool->failed; j++) {
+                if (j == i || !il_hr_facing(s, r, &s->roots[j]))
+                    continue;
+                il_hr_link *l = il_hr_link_make(s, pool, r, &s->roots[j]);
+                if (!l)
+                    break;
+                il_hr_link_append(r, l);
+                row++;
+            }
+            atomic_fetch_add(&made, row);
         }
     }
+    if (limited && atomic_load(&made) > max_links)
+        too_many = true;
     if (too_many) {
         char count[64];
         if (estimate > 0)
             snprintf(count, sizeof count, "about %llu", (unsigned long long)estimate);
         else
-            snprintf(count, sizeof count, "more than %llu", (unsigned long long)max_pairs);
+            snprintf(count, sizeof count, "more than %llu", (unsigned long long)max_links);
         return il_fail(err, IL_ERR_MEMORY,
                        "hr: %u patches make %s initial links, more than fit in half of this "
                        "machine's memory (%llu links, %.2f GB): hierarchical radiosity links "
                        "every pair of input polygons that face each other, so its memory grows "
                        "with their number squared; use --method radiosity (or pt) for a mesh "
                        "this large",
-                       n, count, (unsigned long long)max_pairs, (double)max_pairs * link_bytes / 1e9);
-    }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-    for (uint32_t i = 0; i < n; i++) {
-        il_hr_pool *pool = &s->pools[omp_get_thread_num()];
-        il_hr_elem *r = &s->roots[i];
-        il_hr_watch_poll(s);
-        il_hr_watch_root_done(s);
-        if (!gathers(s, r) || il_hr_stopping(s))
-            continue;
-        for (uint32_t j = 0; j < n && !pool->failed; j++) {
-            if (j == i || !il_hr_facing(s, r, &s->roots[j]))
-                continue;
-            il_hr_link *l = il_hr_link_make(s, pool, r, &s->roots[j]);
-            if (!l)
-                break;
-            il_hr_link_append(r, l);
-        }
+                       n, count, (unsigned long long)max_links, (double)max_links * link_bytes / 1e9);
     }
     if (pools_failed(s))
         return il_fail(err, IL_ERR_MEMORY, "hr: out of memory for the initial links");
