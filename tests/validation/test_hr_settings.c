@@ -79,8 +79,9 @@ int main(void)
     il_error be = {0};
     CHECK(il_hr_solve(big, roots, &tight, &solver, &be) == IL_ERR_MEMORY);
     CHECK(strstr(be.message, "patches make about") && strstr(be.message, "--method radiosity"));
-    /* Within eight times the limit the estimate is not trusted: the links
-     * are made until their count passes the limit, then refused. */
+    /* Within eight times the limit the estimate is not trusted: the pairs
+     * are counted up to the limit, then refused.  (The 13-patch room above,
+     * with no estimate, was refused by the running count of the links.) */
     const char *about = strstr(be.message, "about ");
     unsigned long long estimate = about ? strtoull(about + 6, NULL, 10) : 0;
     CHECK(estimate > 100);

@@ -161,7 +161,8 @@ static il_status setup(il_hr_solver *s, il_error *err)
     /* Far past the limit, the rows of SAMPLE_ROWS roots spread evenly over
      * the list tell at once: the atrium's 146,787 patches make about 4e9
      * links, refused in a second rather than after testing 2e10 pairs.  Only
-     * an estimate eight times the limit is trusted. */
+     * an estimate eight times the limit is trusted; one above the limit is
+     * checked by a count. */
     enum { SAMPLE_ROWS = 256 };
     if (limited && n > 4u * SAMPLE_ROWS) {
         uint64_t sampled = 0;
@@ -169,13 +170,23 @@ static il_status setup(il_hr_solver *s, il_error *err)
         for (uint32_t k = 0; k < SAMPLE_ROWS; k++)
             sampled += facing_row(s, (uint32_t)((uint64_t)k * n / SAMPLE_ROWS));
         estimate = sampled * n / SAMPLE_ROWS;
-        if (estimate <= 8u * max_links)
-            estimate = 0;
     }
-    /* Else the links are made with a running count that stops them as soon
-     * as it passes the limit (by at most a row per thread). */
+    bool too_many = estimate > 8u * max_links;
+    if (!too_many && estimate > max_links) {
+        /* Likely too many: counted without making them (a facing test costs
+         * far less than a link's form factor), up to the limit. */
+        _Atomic uint64_t pairs = 0;
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nt)
+        for (uint32_t i = 0; i < n; i++)
+            if (!il_hr_stopping(s) && atomic_load(&pairs) <= max_links)
+                atomic_fetch_add(&pairs, facing_row(s, i));
+        too_many = atomic_load(&pairs) > max_links;
+    }
+    if (!too_many || estimate <= 8u * max_links)
+        estimate = 0; /* the message gives the limit, not the estimate */
+    /* Then the links, with a running count that stops them as soon as it
+     * passes the limit (by at most a row per thread). */
     _Atomic uint64_t made = 0;
-    bool too_many = estimate > 0;
     if (!too_many) {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
         for (uint32_t i = 0; i < n; i++) {
