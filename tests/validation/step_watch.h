@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "check.h"
+#include "pt_scenes.h"
 
 typedef struct step_watch {
     pthread_t caller;
@@ -39,6 +40,22 @@ static inline void step_watch_check(const step_watch *w)
 {
     CHECK(w->in_order);
     CHECK(w->on_caller);
+}
+
+/* A render of w x h with rd whose set-up callback (installed by the caller)
+ * reports to sw, when sw is not NULL: the image, checked finite, and the
+ * reports checked after it. */
+static inline il_image step_watch_render(const il_scene *s, uint32_t w, uint32_t h,
+                                         const il_render_desc *rd, step_watch *sw,
+                                         il_render_stats *st)
+{
+    if (sw)
+        step_watch_begin(sw);
+    il_image img = render_desc_image(s, w, h, rd, st);
+    CHECK(image_finite(&img));
+    if (sw)
+        step_watch_check(sw);
+    return img;
 }
 
 #endif

@@ -35,17 +35,12 @@ static bool on_step(const il_linespace_progress *p, void *user)
 static il_image render(const il_scene *s, il_linespace_desc ld, watcher *w, il_render_stats *st)
 {
     if (w) {
-        step_watch_begin(&w->sw);
         ld.on_step = on_step;
         ld.on_step_user = w;
     }
     il_render_desc rd = {.method = IL_METHOD_LINESPACE, .spp = 2, .max_depth = 4, .threads = 2,
                          .seed = 3, .linespace = &ld};
-    il_image img = render_desc_image(s, W, H, &rd, st);
-    CHECK(image_finite(&img));
-    if (w)
-        step_watch_check(&w->sw);
-    return img;
+    return step_watch_render(s, W, H, &rd, w ? &w->sw : NULL, st);
 }
 
 int main(void)

@@ -44,17 +44,12 @@ static bool on_step(const il_photon_progress *p, void *user)
 static il_image render(const il_scene *s, il_photon_desc pd, watcher *w, il_render_stats *st)
 {
     if (w) {
-        step_watch_begin(&w->sw);
         pd.on_step = on_step;
         pd.on_step_user = w;
     }
     il_render_desc rd = {.method = IL_METHOD_PHOTON, .spp = 2, .threads = 2, .seed = 3,
                          .photon = &pd};
-    il_image img = render_desc_image(s, W, H, &rd, st);
-    CHECK(image_finite(&img));
-    if (w)
-        step_watch_check(&w->sw);
-    return img;
+    return step_watch_render(s, W, H, &rd, w ? &w->sw : NULL, st);
 }
 
 int main(void)
