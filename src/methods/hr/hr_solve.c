@@ -171,7 +171,7 @@ static il_status setup(il_hr_solver *s, il_error *err)
             sampled += facing_row(s, (uint32_t)((uint64_t)k * n / SAMPLE_ROWS));
         estimate = sampled * n / SAMPLE_ROWS;
     }
-    bool too_many = estimate > 8u * max_links;
+    bool refused_on_estimate = estimate > 8u * max_links, too_many = refused_on_estimate;
     if (!too_many && estimate > max_links) {
         /* Likely too many: counted without making them (a facing test costs
          * far less than a link's form factor), up to the limit. */
@@ -182,8 +182,6 @@ static il_status setup(il_hr_solver *s, il_error *err)
                 atomic_fetch_add(&pairs, facing_row(s, i));
         too_many = atomic_load(&pairs) > max_links;
     }
-    if (!too_many || estimate <= 8u * max_links)
-        estimate = 0; /* the message gives the limit, not the estimate */
     /* Then the links, with a running count that stops them as soon as it
      * passes the limit (by at most a row per thread). */
     _Atomic uint64_t made = 0;
@@ -213,7 +211,7 @@ static il_status setup(il_hr_solver *s, il_error *err)
         too_many = true;
     if (too_many) {
         char count[64];
-        if (estimate > 0)
+        if (refused_on_estimate)
             snprintf(count, sizeof count, "about %llu", (unsigned long long)estimate);
         else
             snprintf(count, sizeof count, "more than %llu", (unsigned long long)max_links);
