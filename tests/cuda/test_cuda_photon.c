@@ -1,12 +1,19 @@
 /* The GPU photon method (src/cuda/photon_kernel.cu) on the Cornell box
  * against the same shared kernels compiled by gcc (kernel/
  * kernel_photon_map.c): the photon map (records stored, their power, the
- * sorted order and the cell ranges: the same up to the few photons that
- * nvcc's FMA contraction sends another way or into a neighbouring cell),
- * the gathered image (the same up to float rounding), and the image
- * against the CPU path tracer il_render (mean within the density
- * estimate's bias, as tests/unit/test_kernel_photon.c).  Exits 77 (a skip
- * for ctest) without a GPU or driver, as on CI. */
+ * same photons at the same places, cells holding their own records), the gathered
+ * image (the same up to float rounding), and the image against the CPU path
+ * tracer il_render (mean within the density estimate's bias, as
+ * tests/unit/test_kernel_photon.c).  Exits 77 (a skip for ctest) without a
+ * GPU or driver, as on CI.
+ *
+ * The maps are compared photon by photon, not entry by entry: the GPU's
+ * sinf/cosf (within 2 ulp of glibc's) move photons by rounding steps, and
+ * on a wall that lies on a cell boundary (the floor y = 0, the wall
+ * x = 0) those steps decide the cell; a photon in another cell moves every
+ * sorted entry between the two cells' hashes.  Measured on an H200: the same 697,018
+ * records, 0.5% at the same index, 62% of the used cells with as many
+ * photons as the CPU's. */
 #include <stdlib.h>
 #include <string.h>
 #include "cuda_test.h"
@@ -44,21 +51,41 @@ int main(void)
     for (uint32_t i = 0; i < gcount; i++) {
         pg[0] += gp[i].power.x; pg[1] += gp[i].power.y; pg[2] += gp[i].power.z;
     }
-    uint64_t same_place = 0, same_cells = 0;
-    for (uint32_t i = 0; i < cpu.grid.count && i < gcount; i++) {
-        ilk_vec3 d = ilk_sub(gp[i].p, cpu.photons[i].p);
-        same_place += ilk_dot(d, d) < 1e-8f;
+    /* The same photons: each GPU record has a CPU record with its bounce
+     * count and power within 1e-4 m (the CPU map's own range query). */
+    uint64_t same_place = 0, in_cells = 0, cells_ok = 0, cells_used = 0;
+    for (uint32_t i = 0; i < gcount; i++) {
+        ilk_grid_query q = ilk_grid_query_begin(&cpu.grid, gp[i].p, 1e-4f);
+        uint32_t j;
+        bool found = false;
+        while (!found && ilk_grid_next(&cpu.grid, &q, &j)) {
+            const ilk_photon *c = &cpu.photons[j];
+            ilk_vec3 d = ilk_sub(c->power, gp[i].power);
+            found = c->bounces == gp[i].bounces && ilk_dot(d, d) <= 1e-8f * ilk_dot(c->power, c->power);
+        }
+        same_place += found;
     }
-    for (size_t h = 0; h < cells; h++)
-        same_cells += gs[h] == cpu.cell_start[h] && ge[h] == cpu.cell_end[h];
-    printf("records: cpu %u, gpu %u; power cpu (%.5f %.5f %.5f) gpu (%.5f %.5f %.5f); %.3f%% of records at the "
-           "same place, %.3f%% of cell ranges equal\n", cpu.grid.count, gcount, pc[0], pc[1], pc[2], pg[0], pg[1],
-           pg[2], 100.0 * same_place / cpu.grid.count, 100.0 * same_cells / cells);
+    /* The GPU's grid over its own records: each used cell's range holds
+     * records of that cell's hash only, and the ranges cover the records. */
+    for (size_t h = 0; h < cells; h++) {
+        if (ge[h] <= gs[h])
+            continue;
+        cells_used++;
+        bool ok = ge[h] <= gcount;
+        for (uint32_t k = gs[h]; ok && k < ge[h]; k++)
+            ok = ilk_grid_key(&gp[k], cpu.grid.inv_cell, cpu.grid.hash_mask) == h;
+        cells_ok += ok;
+        in_cells += ge[h] - gs[h];
+    }
+    printf("records: cpu %u, gpu %u; power cpu (%.5f %.5f %.5f) gpu (%.5f %.5f %.5f); %.3f%% of the gpu's records "
+           "found in the cpu's map; %llu of %llu cells used hold only their own records\n", cpu.grid.count, gcount,
+           pc[0], pc[1], pc[2], pg[0], pg[1], pg[2], 100.0 * same_place / (gcount ? gcount : 1),
+           (unsigned long long)cells_ok, (unsigned long long)cells_used);
     CHECK_REL(gcount, cpu.grid.count, 0.005);
     for (int c = 0; c < 3; c++)
         CHECK_REL(pg[c], pc[c], 0.005);
-    CHECK(same_place >= cpu.grid.count * 0.95);
-    CHECK(same_cells >= cells * 0.95);
+    CHECK(same_place >= gcount * 0.99);
+    CHECK(cells_used > 0 && cells_ok == cells_used && in_cells == gcount);
 
     /* The images. */
     float *g = calloc(3 * W * H, sizeof *g), *k = calloc(3 * W * H, sizeof *k);
