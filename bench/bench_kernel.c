@@ -54,7 +54,8 @@ int main(int argc, char **argv)
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++)
             for (uint32_t i = 0; i < spp; i++) {
-                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i);
+                uint32_t rays = 0;
+                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i, &rays);
                 sum += (double)L.x + L.y + L.z;
             }
     double t_kernel = now() - t0;

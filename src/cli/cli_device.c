@@ -98,16 +98,18 @@ static il_status render_photon(const il_scene *scene, const il_render_desc *desc
         return il_fail(err, IL_ERR_INVALID, "--device cuda --method photon: at most %u photons", UINT32_MAX);
     float diagonal = v3_length(v3_sub(scene->bounds_max, scene->bounds_min));
     float radius = (pd && pd->max_radius > 0.0f ? pd->max_radius : 0.02f) * (diagonal > 0.0f ? diagonal : 1.0f);
-    uint32_t spp = desc->spp ? desc->spp : 16;
     il_cuda_photon_stats ps;
     /* A photon of d bounces leaves d + 1 records (pm_settings.c: d is
      * max_depth - 1 by default). */
     uint32_t records = pd && pd->max_photon_depth ? pd->max_photon_depth + 1 : desc->max_depth;
-    il_status st = il_cuda_render_photon(scene, width, height, spp, records, desc->seed, (uint32_t)photons, radius,
-                                         rgb, &ps, err);
+    il_cuda_run run = {.time_limit = desc->time_limit, .progress = desc->progress,
+                       .progress_user = desc->progress_user};
+    il_status st = il_cuda_render_photon(scene, width, height, desc->spp, records, desc->seed, (uint32_t)photons,
+                                         radius, rgb, &ps, &run, err);
     if (st != IL_OK)
         return st;
-    rs->spp = spp;
+    rs->spp = run.spp_done;
+    rs->rays = run.rays;
     rs->photon.emitted = ps.emitted;
     rs->photon.stored_global = ps.stored;
     rs->photon.passes = 1;
@@ -196,9 +198,12 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
     memset(out, 0, sizeof *out);
     bool supported = desc->method == IL_METHOD_PT || desc->method == IL_METHOD_PHOTON ||
                      desc->method == IL_METHOD_RADIOSITY;
-    if (!supported || desc->time_limit > 0.0)
-        return il_fail(err, IL_ERR_INVALID, "--device cuda renders --method pt, photon or radiosity with --spp "
-                       "only so far (docs/cuda.md)");
+    if (!supported)
+        return il_fail(err, IL_ERR_INVALID, "--device cuda renders --method pt, photon or radiosity only so far "
+                       "(docs/cuda.md)");
+    if (desc->method == IL_METHOD_RADIOSITY && desc->time_limit > 0.0)
+        return il_fail(err, IL_ERR_INVALID, "--device cuda --method radiosity renders with --spp, not --time "
+                       "(docs/cuda.md)");
 #ifdef IL_HAVE_CUDA
     struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
@@ -214,9 +219,11 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
     if (desc->method == IL_METHOD_PHOTON) {
         st = render_photon(scene, desc, width, height, rgb, rs, err);
     } else {
-        uint32_t spp = desc->spp ? desc->spp : 16;
-        st = il_cuda_render_pt(scene, width, height, spp, desc->max_depth, desc->seed, rgb, err);
-        rs->spp = spp;
+        il_cuda_run run = {.time_limit = desc->time_limit, .progress = desc->progress,
+                           .progress_user = desc->progress_user};
+        st = il_cuda_render_pt(scene, width, height, desc->spp, desc->max_depth, desc->seed, rgb, &run, err);
+        rs->spp = run.spp_done;
+        rs->rays = run.rays;
     }
     if (st != IL_OK) {
         free(rgb);

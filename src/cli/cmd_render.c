@@ -390,6 +390,11 @@ int cmd_render(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
+    if (o.cuda && o.write_every > 0.0) {
+        cli_error("--write-every works with --device cpu only (a GPU render keeps its image on the GPU "
+                  "until the end)");
+        return IL_EXIT_USAGE;
+    }
     if (o.cuda && (rc = cli_device_require_cuda()) != IL_EXIT_OK)
         return rc;
     if (cli_mpi_rank() > 0)

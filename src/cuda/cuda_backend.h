@@ -47,13 +47,29 @@ il_status il_cuda_trace_rays(const il_kbvh *bvh, const ilk_ray *rays, uint32_t n
 
 typedef struct il_scene il_scene;
 
+/* How a progressive GPU render (il_cuda_render_pt, the gather of
+ * il_cuda_render_photon) runs, and what it did.  It launches a few samples
+ * per pixel at a time until spp are done, or time_limit seconds (> 0) have
+ * passed since the call, or progress (may be NULL) returns false; progress
+ * gets a report after every launch (its film is NULL: the image stays on
+ * the GPU to the end).  The image is the mean of the spp_done samples per
+ * pixel rendered, and rays counts the rays they cast. */
+typedef struct il_cuda_run {
+    double time_limit;
+    il_progress_fn progress;
+    void *progress_user;
+    uint32_t spp_done;             /* out */
+    uint64_t rays;                 /* out */
+} il_cuda_run;
+
 /* Path traces the committed scene from its camera on the GPU with the
  * shared kernel (kernel/kernel_path.h, one thread per pixel, spp samples
- * each): rgb receives width x height x 3 floats, the mean radiance per
- * pixel, rows top to bottom.  IL_ERR_INVALID for what the kernel does not do
- * yet (il_kscene_build), IL_ERR_RUNTIME / IL_ERR_MEMORY for the GPU. */
+ * each; 0: 16, or no bound with a time limit): rgb receives width x height
+ * x 3 floats, the mean radiance per pixel, rows top to bottom.  run may be
+ * NULL.  IL_ERR_INVALID for what the kernel does not do yet
+ * (il_kscene_build), IL_ERR_RUNTIME / IL_ERR_MEMORY for the GPU. */
 il_status il_cuda_render_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
-                            uint32_t max_depth, uint64_t seed, float *rgb, il_error *err);
+                            uint32_t max_depth, uint64_t seed, float *rgb, il_cuda_run *run, il_error *err);
 
 /* What a GPU photon render measured (GPU event times). */
 typedef struct il_cuda_photon_stats {
@@ -68,10 +84,11 @@ typedef struct il_cuda_photon_stats {
  * photons of at most max_depth records each, the hashed grid with cells of
  * side radius built by a radix sort by cell, and spp camera samples per
  * pixel reading the grid at their first hit (radius: the gather radius).
- * rgb as il_cuda_render_pt.  stats may be NULL. */
+ * rgb, spp and run as il_cuda_render_pt (run: the gather's samples and
+ * camera rays).  stats may be NULL. */
 il_status il_cuda_render_photon(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
                                 uint32_t max_depth, uint64_t seed, uint32_t num_emitted, float radius,
-                                float *rgb, il_cuda_photon_stats *stats, il_error *err);
+                                float *rgb, il_cuda_photon_stats *stats, il_cuda_run *run, il_error *err);
 
 /* The GPU's photon map of a kernel scene, downloaded for the tests: photons
  * (num_emitted * max_depth slots, sorted by cell), cell_start and cell_end

@@ -57,8 +57,9 @@ struct photon_sampler {
     ilk_scene sc;
     ilk_grid g;
     float radius;
-    __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s) const
+    __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s, uint32_t *rays) const
     {
+        ++*rays; /* the camera ray */
         return ilk_photon_pixel_sample(&sc, &g, radius, x, y, s);
     }
 };
@@ -197,8 +198,11 @@ extern "C" il_status il_cuda_photon_map(const il_kscene *ks, uint32_t num_emitte
 
 extern "C" il_status il_cuda_render_photon(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
                                            uint32_t max_depth, uint64_t seed, uint32_t num_emitted, float radius,
-                                           float *rgb, il_cuda_photon_stats *stats, il_error *err)
+                                           float *rgb, il_cuda_photon_stats *stats, il_cuda_run *run,
+                                           il_error *err)
 {
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     il_kscene ks;
     il_cuda_scene d;
     il_status st = il_cuda_scene_prepare(scene, width, height, max_depth, seed, &ks, &d, err);
@@ -211,8 +215,9 @@ extern "C" il_status il_cuda_render_photon(const il_scene *scene, uint32_t width
     dev_map m;
     if ((st = build_map(&d, num_emitted, radius, &m, stats, err)) == IL_OK) {
         /* Launches of a few samples each. */
-        st = il_cuda_progressive_image(photon_sampler{d.view, m.grid, radius}, width, height, spp ? spp : 1, 4, rgb,
-                                       &stats->seconds_gather, "the gather kernel", err);
+        st = il_cuda_progressive_image(photon_sampler{d.view, m.grid, radius}, width, height,
+                                       il_cuda_spp(spp, run, 16), 4, rgb, &stats->seconds_gather, run, &t0,
+                                       "the gather kernel", err);
         dev_map_free(&m);
     }
     il_cuda_scene_free(&d);

@@ -15,19 +15,25 @@
 /* One path sample of a pixel (il_cuda_pixel_kernel's sampler). */
 struct pt_sampler {
     ilk_scene sc;
-    __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s) const { return ilk_path_sample(&sc, x, y, s); }
+    __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s, uint32_t *rays) const
+    {
+        return ilk_path_sample(&sc, x, y, s, rays);
+    }
 };
 
 extern "C" il_status il_cuda_render_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t spp,
-                                       uint32_t max_depth, uint64_t seed, float *rgb, il_error *err)
+                                       uint32_t max_depth, uint64_t seed, float *rgb, il_cuda_run *run,
+                                       il_error *err)
 {
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     il_kscene ks;
     il_cuda_scene d;
     il_status st = il_cuda_scene_prepare_with(il_kscene_build_pt, scene, width, height, max_depth, seed, &ks, &d, err);
     if (st != IL_OK)
         return st;
-    st = il_cuda_progressive_image(pt_sampler{d.view}, width, height, spp ? spp : 16, PT_BATCH, rgb, NULL,
-                                   "the path-tracing kernel", err);
+    st = il_cuda_progressive_image(pt_sampler{d.view}, width, height, il_cuda_spp(spp, run, 16), PT_BATCH, rgb,
+                                   NULL, run, &t0, "the path-tracing kernel", err);
     il_cuda_scene_free(&d);
     il_kscene_free(&ks);
     return st;

@@ -169,9 +169,9 @@ IL_DEVICE_INLINE ilk_vec3 ilk_offset(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n
  * d^2 / (A |cos theta_l|) (pbrt-v4 equation 4.9), and for a delta light
  * (scene/lights.c, pbrt-v4 12.1-12.4) Li = I / d^2 (times the spot's
  * cos^n profile inside its cut-off) or the directional irradiance E, and
- * pdf is the choice probability. */
+ * pdf is the choice probability.  *rays counts the shadow ray. */
 IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk_vec3 p, ilk_vec3 wo, float u,
-                                     float u1, float u2)
+                                     float u1, float u2, uint32_t *rays)
 {
     ilk_vec3 zero = ilk_v3(0, 0, 0);
     if (sc->num_pt_lights == 0)
@@ -250,6 +250,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
         shadow.dir = wi;
         shadow.tmax = INFINITY;
     }
+    ++*rays;
     if (ilk_bvh_occluded(&sc->bvh, &shadow))
         return zero;
     return ilk_scale(ilk_mul(f, Li), cos_i / pdf);
@@ -273,8 +274,10 @@ IL_DEVICE_INLINE ilk_ray ilk_camera_ray(const ilk_camera *cam, uint32_t x, uint3
 /* The radiance of one camera sample through pixel (x, y).  `depth` counts
  * the scattering events before the current ray; max_depth bounds them as
  * the CPU's max_depth does (after the last one only what its BSDF-sampled
- * ray finds is counted: here the environment). */
-IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint32_t y, uint32_t sample)
+ * ray finds is counted: here the environment).  The rays it casts are
+ * added to *rays. */
+IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint32_t y, uint32_t sample,
+                                          uint32_t *rays)
 {
     ilk_sobol smp = ilk_sobol_start(sc->seed, (uint64_t)y * sc->width + x, sample);
     float u, v;
@@ -286,6 +289,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
     bool counts_emission = true;
     for (uint32_t depth = 0;; depth++) {
         ilk_hit h;
+        ++*rays;
         if (!ilk_bvh_closest(&sc->bvh, &ray, &h)) {
             if (sc->has_environment)
                 L = ilk_add(L, ilk_mul(beta, sc->environment));
@@ -306,7 +310,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         ilk_sobol_2d(&smp, &ul, &u_lobe);
         ilk_sobol_2d(&smp, &u1, &u2);
         if (!delta)
-            L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2)));
+            L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2, rays)));
         /* The last bounce only matters when what it finds is counted: the
          * sky, or an emitter seen through a mirror or glass. */
         if (depth + 1 >= sc->max_depth && !sc->has_environment && !delta)

@@ -27,6 +27,21 @@ if [ "$cuda" = on ] && [ "$gpu" = yes ]; then
     expect_file photon.pfm "render --device cuda --method photon"
     expect_exit 0 "render --device cuda --method radiosity" -- "$ILLUM" render cornell --device cuda --method radiosity --spp 1 --width 32 --height 32 -q -o rad.pfm
     expect_file rad.pfm "render --device cuda --method radiosity"
+    # --time, the ray count and Ctrl-C on the GPU (il_cuda_run).
+    expect_exit 0 "render --device cuda --time" -- "$ILLUM" render cornell --device cuda --time 0.5 --width 32 --height 32 -q -o timed.pfm --stats timed.json
+    expect_file timed.pfm "render --device cuda --time"
+    checks=$((checks + 1))
+    grep -Eq '"spp":[[:space:]]*[1-9]' timed.json && grep -Eq '"rays":[[:space:]]*[1-9]' timed.json ||
+        { fail "render --device cuda --time: no samples or rays in the stats"; cat timed.json >&2; }
+    expect_exit 0 "render --device cuda --method photon --time" -- "$ILLUM" render cornell --device cuda --method photon --time 0.5 --photons 10000 --width 32 --height 32 -q -o ptimed.pfm
+    expect_file ptimed.pfm "render --device cuda --method photon --time"
+    expect_exit 1 "render --device cuda --method radiosity --time" -- "$ILLUM" render cornell --device cuda --method radiosity --time 1 -o bad.exr
+    expect_stderr "not --time" "render --device cuda --method radiosity --time"
+    expect_no_file bad.exr "render --device cuda --method radiosity --time"
+    expect_interrupted 1 "interrupted GPU render" -- "$ILLUM" render cornell --device cuda --spp 16000000 --width 64 --height 64 -q -o stopped.pfm --stats stopped.json
+    expect_file stopped.pfm "interrupted GPU render"
+    checks=$((checks + 1))
+    grep -Eq '"interrupted":[[:space:]]*true' stopped.json || { fail "interrupted GPU render: stats"; cat stopped.json >&2; }
     expect_exit 1 "render --device cuda --method sppm" -- "$ILLUM" render cornell --device cuda --method sppm -o bad.exr
     expect_stderr "method pt, photon or radiosity" "render --device cuda --method sppm"
     expect_no_file bad.exr "render --device cuda --method sppm"
@@ -44,6 +59,12 @@ else
         expect_stderr "use --device cpu" "render --device cuda, no GPU"
     fi
 fi
+
+# --write-every needs the image on the host: refused with --device cuda,
+# GPU or not.
+expect_exit 2 "render --device cuda --write-every" -- "$ILLUM" render cornell --device cuda --write-every 1 -o every.exr
+expect_stderr "write-every works with --device cpu" "render --device cuda --write-every"
+expect_no_file every.exr "render --device cuda --write-every"
 
 # --device cpu is the default and renders as before.
 expect_exit 0 "render --device cpu" -- "$ILLUM" render cornell --device cpu --spp 1 --width 32 --height 32 -q -o cpu.pfm

@@ -90,7 +90,9 @@ int main(void)
     /* The images. */
     float *g = calloc(3 * W * H, sizeof *g), *k = calloc(3 * W * H, sizeof *k);
     il_cuda_photon_stats ps;
-    CHECK_OK(il_cuda_render_photon(s, W, H, SPP, 8, 3, PHOTONS, RADIUS, g, &ps, &err), &err);
+    il_cuda_run run = {0};
+    CHECK_OK(il_cuda_render_photon(s, W, H, SPP, 8, 3, PHOTONS, RADIUS, g, &ps, &run, &err), &err);
+    CHECK(run.spp_done == SPP && run.rays == (uint64_t)W * H * SPP); /* a camera ray a sample */
     printf("gpu: %llu photons traced in %.4f s (%.1f M photons/s), grid built in %.4f s, gather %.4f s\n",
            (unsigned long long)ps.emitted, ps.seconds_trace, 1e-6 * ps.emitted / fmax(ps.seconds_trace, 1e-9),
            ps.seconds_build, ps.seconds_gather);

@@ -1,10 +1,11 @@
 /* The GPU path-tracing megakernel (src/cuda/pt_kernel.cu) on the Cornell
  * box and on the Cornell box with the Stanford dragon against (a) the same
- * kernel compiled by gcc with the same random streams: the same image up to
- * float rounding (nvcc's FMA contraction can
- * send a few paths another way), and (b) the CPU path tracer il_render:
- * the same mean radiance within noise.  Exits 77 (a skip for ctest) without
- * a GPU or driver, as on CI. */
+ * kernel compiled by gcc with the same random streams: the same image and
+ * ray count up to float rounding (the GPU's sinf/cosf can send a few paths
+ * another way), and (b) the CPU path tracer il_render: the same mean
+ * radiance within noise.  Then the progressive render's stops (il_cuda_run):
+ * by its progress callback and by its time limit.  Exits 77 (a skip for
+ * ctest) without a GPU or driver, as on CI. */
 #include <stdlib.h>
 #include <string.h>
 #include "cuda_test.h"
@@ -20,25 +21,67 @@ static void compare(il_scene *s)
 {
     il_error err = {0};
     float *gpu = calloc(3 * W * H, sizeof *gpu), *cpu = calloc(3 * W * H, sizeof *cpu);
-    CHECK_OK(il_cuda_render_pt(s, W, H, SPP, 8, 3, gpu, &err), &err);
+    il_cuda_run run = {0};
+    CHECK_OK(il_cuda_render_pt(s, W, H, SPP, 8, 3, gpu, &run, &err), &err);
 
     il_kscene ks;
     CHECK_OK(il_kscene_build(s, W, H, 8, 3, &ks, &err), &err);
+    uint64_t cpu_rays = 0;
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
             double acc[3] = {0, 0, 0};
             for (uint32_t i = 0; i < SPP; i++) {
-                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i);
+                uint32_t r = 0;
+                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i, &r);
+                cpu_rays += r;
                 acc[0] += L.x; acc[1] += L.y; acc[2] += L.z;
             }
             for (int c = 0; c < 3; c++)
                 cpu[3 * (y * W + x) + c] = (float)(acc[c] / SPP);
         }
     il_kscene_free(&ks);
+    /* The same paths cast the same rays, up to the few that the GPU's
+     * sinf/cosf send another way. */
+    printf("rays: gpu %llu, kernel on cpu %llu; %u spp done\n", (unsigned long long)run.rays,
+           (unsigned long long)cpu_rays, run.spp_done);
+    CHECK(run.spp_done == SPP);
+    CHECK_REL((double)run.rays, (double)cpu_rays, 1e-3);
 
     cuda_test_compare(s, W, H, gpu, cpu, SPP, 0.03);
     free(gpu);
     free(cpu);
+}
+
+/* Stops the render at its second report. */
+static bool stop_at_two(const il_render_progress *p, void *user)
+{
+    uint32_t *reports = user;
+    CHECK(p->film == NULL && p->passes_done == 16 * (*reports + 1) && p->rays > 0);
+    return ++*reports < 2;
+}
+
+/* A render stopped by its progress callback after two launches, and one
+ * stopped by its time limit after the first: each the very image of a
+ * render asked for that many samples. */
+static void stops(il_scene *s)
+{
+    il_error err = {0};
+    size_t bytes = sizeof(float) * 3 * W * H;
+    float *rgb = malloc(bytes), *ref = malloc(bytes);
+    uint32_t reports = 0;
+    il_cuda_run run = {.progress = stop_at_two, .progress_user = &reports};
+    CHECK_OK(il_cuda_render_pt(s, W, H, SPP, 8, 3, rgb, &run, &err), &err);
+    CHECK(reports == 2 && run.spp_done == 32 && run.rays > 0);
+    CHECK_OK(il_cuda_render_pt(s, W, H, 32, 8, 3, ref, NULL, &err), &err);
+    CHECK(memcmp(rgb, ref, bytes) == 0);
+    il_cuda_run timed = {.time_limit = 1e-9};
+    CHECK_OK(il_cuda_render_pt(s, W, H, 0, 8, 3, rgb, &timed, &err), &err);
+    CHECK(timed.spp_done == 16);
+    CHECK_OK(il_cuda_render_pt(s, W, H, 16, 8, 3, ref, NULL, &err), &err);
+    CHECK(memcmp(rgb, ref, bytes) == 0);
+    printf("stopped by the callback after %u spp, by a 1 ns limit after %u spp\n", run.spp_done, timed.spp_done);
+    free(rgb);
+    free(ref);
 }
 
 int main(void)
@@ -49,6 +92,7 @@ int main(void)
     if (!s)
         return check_report();
     compare(s);
+    stops(s);
     il_scene_release(s);
 
     /* The Cornell box with the Stanford dragon (47,806 triangles). */

@@ -39,12 +39,17 @@ static void compare_scene(il_scene *s, const char *label, setup q)
      * variance of the samples' channel sum, for a z-test. */
     float *k = calloc(3 * (size_t)W * H, sizeof *k);
     double *bsum = calloc((size_t)NBX * NBY, sizeof *bsum), *bsq = calloc((size_t)NBX * NBY, sizeof *bsq);
+    uint64_t odd_counts = 0; /* samples whose ray count is out of bounds */
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
             double acc[3] = {0, 0, 0};
             uint32_t bi = (y / B) * NBX + x / B;
             for (uint32_t i = 0; i < SPP; i++) {
-                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i);
+                uint32_t r = 0;
+                ilk_vec3 L = ilk_path_sample(&ks.view, x, y, i, &r);
+                /* The camera ray, and at most a shadow ray and a next ray
+                 * per bounce. */
+                odd_counts += r < 1 || r > 2 * q.max_depth + 1;
                 acc[0] += L.x; acc[1] += L.y; acc[2] += L.z;
                 double v = (double)L.x + L.y + L.z;
                 bsum[bi] += v;
@@ -53,6 +58,7 @@ static void compare_scene(il_scene *s, const char *label, setup q)
             for (int c = 0; c < 3; c++)
                 k[3 * (y * W + x) + c] = (float)(acc[c] / SPP);
         }
+    CHECK(odd_counts == 0);
 
     il_film *film = NULL;
     CHECK_OK(il_film_create(W, H, &film, &err), &err);
