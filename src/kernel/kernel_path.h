@@ -17,8 +17,9 @@
  * (kernel/kernel_sobol.h, the same numbers as core/sampler.c for a (seed,
  * pixel, sample, dimension)), the camera jitter in dimensions 0-1 and three
  * pairs per vertex (light choice and BSDF lobe choice, point on the light,
- * bounce direction), so the result does not depend on how pixels are split
- * among threads or GPU blocks.  The CPU path tracer spends its dimensions
+ * bounce direction), a fourth from the fourth vertex on for the Russian
+ * roulette, so the result does not depend on how pixels are split among
+ * threads or GPU blocks.  The CPU path tracer spends its dimensions
  * differently (MIS, Russian roulette), so images agree in expectation, not
  * bit for bit.  The PCG32 stream below (ilk_rng) is for the photon
  * kernels. */
@@ -323,6 +324,18 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         counts_emission = delta;
         if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
             break;
+        /* Russian roulette after the third vertex, as the CPU path tracer
+         * (pbrt-v4 13.4.4): go on with probability q = min(max component
+         * of the throughput, 0.95) and divide by q, which keeps the
+         * estimate unbiased. */
+        if (depth >= 3) {
+            float q = ilk_minf(ilk_maxf(beta.x, ilk_maxf(beta.y, beta.z)), 0.95f);
+            float u_rr, u_unused;
+            ilk_sobol_2d(&smp, &u_rr, &u_unused);
+            if (!(u_rr < q))
+                break;
+            beta = ilk_scale(beta, 1.0f / q);
+        }
         ray.dir = wi;
         ray.org = ilk_offset(sc, p, b.ng, wi);
         ray.tmin = 0.0f;
