@@ -38,6 +38,9 @@ typedef struct il_cuda_scene {
     ilk_light *pt_lights;
     float *pt_light_cdf;
     ilk_tri_normals *normals;      /* NULL when the scene has none */
+    ilk_tri_uvs *uvs;              /* NULL without textures */
+    ilk_texture *textures;
+    float *texels;
     ilk_scene view;                /* ks->view with the device pointers */
 } il_cuda_scene;
 
@@ -51,6 +54,9 @@ static inline void il_cuda_scene_free(il_cuda_scene *d)
     cudaFree(d->pt_lights);
     cudaFree(d->pt_light_cdf);
     cudaFree(d->normals);
+    cudaFree(d->uvs);
+    cudaFree(d->textures);
+    cudaFree(d->texels);
     memset(d, 0, sizeof *d);
 }
 
@@ -68,7 +74,11 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
         (st = il_cuda_upload(&d->pt_light_cdf, ks->pt_light_cdf, ks->num_pt_lights + 1, "uploading the light table CDF",
                              err)) != IL_OK ||
         (ks->normals &&
-         (st = il_cuda_upload(&d->normals, ks->normals, ks->num_normals, "uploading the vertex normals", err)) != IL_OK)) {
+         (st = il_cuda_upload(&d->normals, ks->normals, ks->num_normals, "uploading the vertex normals", err)) != IL_OK) ||
+        (ks->uvs &&
+         ((st = il_cuda_upload(&d->uvs, ks->uvs, ks->num_uvs, "uploading the texture coordinates", err)) != IL_OK ||
+          (st = il_cuda_upload(&d->textures, ks->textures, ks->num_textures, "uploading the textures", err)) != IL_OK ||
+          (st = il_cuda_upload(&d->texels, ks->texels, ks->num_texels, "uploading the texels", err)) != IL_OK))) {
         il_cuda_scene_free(d);
         return st;
     }
@@ -81,6 +91,9 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.pt_lights = d->pt_lights;
     d->view.pt_light_cdf = d->pt_light_cdf;
     d->view.normals = d->normals;
+    d->view.uvs = d->uvs;
+    d->view.textures = d->textures;
+    d->view.texels = d->texels;
     return IL_OK;
 }
 

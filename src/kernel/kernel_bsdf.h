@@ -32,7 +32,10 @@ typedef struct ilk_material {
     float exponent;        /* Phong: n (32 when the material gives none) */
     float diffuse_prob;    /* Phong: probability of sampling the diffuse lobe */
     float ior;             /* glass: index of refraction (1.5 when none given) */
-    float pad[2];
+    uint32_t texture;      /* 0: none; else 1 + an index into the scene's textures: diffuse
+                              is then the material's own colour and specular its clamped ks,
+                              resolved per hit by ilk_material_at */
+    float pad;
 } ilk_material;
 
 /* The BSDF at a surface point. */

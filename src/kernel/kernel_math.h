@@ -28,6 +28,9 @@ IL_DEVICE_INLINE ilk_vec3 ilk_cross(ilk_vec3 a, ilk_vec3 b)
  * the result is b, which the slab test below relies on. */
 IL_DEVICE_INLINE float ilk_minf(float a, float b) { return a < b ? a : b; }
 IL_DEVICE_INLINE float ilk_maxf(float a, float b) { return a > b ? a : b; }
+IL_DEVICE_INLINE float ilk_max3(ilk_vec3 c) { return ilk_maxf(c.x, ilk_maxf(c.y, c.z)); }
+/* Rec. 709 luminance, as core/vec.h's il_luminance. */
+IL_DEVICE_INLINE float ilk_luminance(ilk_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 IL_DEVICE_INLINE ilk_vec3 ilk_vmin(ilk_vec3 a, ilk_vec3 b) { return ilk_v3(ilk_minf(a.x, b.x), ilk_minf(a.y, b.y), ilk_minf(a.z, b.z)); }
 IL_DEVICE_INLINE ilk_vec3 ilk_vmax(ilk_vec3 a, ilk_vec3 b) { return ilk_v3(ilk_maxf(a.x, b.x), ilk_maxf(a.y, b.y), ilk_maxf(a.z, b.z)); }
 IL_DEVICE_INLINE float ilk_comp(ilk_vec3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }

@@ -54,6 +54,18 @@ typedef struct ilk_tri_normals {
     ilk_vec3 n[3];
 } ilk_tri_normals;
 
+/* The texture coordinates of one triangle's vertices (of tris[i]), all
+ * zero when its mesh has none. */
+typedef struct ilk_tri_uvs {
+    float u[3], v[3];
+} ilk_tri_uvs;
+
+/* A texture of linear RGB floats, rows top to bottom, at texels[offset ..]. */
+typedef struct ilk_texture {
+    uint32_t width, height;
+    uint64_t offset;
+} ilk_texture;
+
 typedef struct ilk_camera {
     ilk_vec3 position, forward, right, up;
     float tan_half_x, tan_half_y, inv_width, inv_height;
@@ -76,6 +88,9 @@ typedef struct ilk_scene {
     uint32_t has_environment;      /* a uniform sky of radiance `environment` */
     ilk_vec3 environment;
     const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
+    const ilk_tri_uvs *uvs;        /* per triangle; NULL when no material has a texture */
+    const ilk_texture *textures;
+    const float *texels;           /* every texture's texels, 3 floats each */
     ilk_camera camera;
     uint32_t width, height, max_depth;
     uint64_t seed;
@@ -150,6 +165,54 @@ IL_DEVICE_INLINE void ilk_surface_normals(const ilk_scene *sc, uint32_t tri, flo
         if (ilk_dot(*ns, *ng) < 0.0f)
             *ng = ilk_scale(*ng, -1.0f);
     }
+}
+
+/* The texture at (u, v): bilinear, wrapping, v = 0 the bottom row, as
+ * scene/scene.c's il_texture_sample. */
+IL_DEVICE_INLINE ilk_vec3 ilk_texture_sample(const ilk_scene *sc, const ilk_texture *t, float u, float v)
+{
+    float x = (u - floorf(u)) * (float)t->width - 0.5f;
+    float y = (1.0f - (v - floorf(v))) * (float)t->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y), tx = x - fx, ty = y - fy;
+    int x0 = (int)fx, y0 = (int)fy, w = (int)t->width, h = (int)t->height;
+    ilk_vec3 acc = ilk_v3(0, 0, 0);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            int xi = ((x0 + i) % w + w) % w, yi = ((y0 + j) % h + h) % h;
+            const float *px = sc->texels + t->offset + 3 * ((uint64_t)yi * t->width + (uint64_t)xi);
+            float wt = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
+            acc = ilk_add(acc, ilk_scale(ilk_v3(px[0], px[1], px[2]), wt));
+        }
+    return acc;
+}
+
+/* A textured material at barycentrics (b1, b2) of tris[tri], resolved as
+ * il_bsdf_init does: kd = max(colour x texel, 0), and for Phong kd + ks
+ * scaled down together to at most 1 per channel (Lafortune & Willems 1994,
+ * section 3) and the diffuse lobe's probability by the albedos' luminance. */
+IL_DEVICE_INLINE ilk_material ilk_material_at(const ilk_scene *sc, const ilk_material *m, uint32_t tri, float b1,
+                                              float b2)
+{
+    ilk_material r = *m;
+    const ilk_tri_uvs *tu = &sc->uvs[tri];
+    float b0 = 1.0f - b1 - b2;
+    float u = tu->u[0] * b0 + tu->u[1] * b1 + tu->u[2] * b2, v = tu->v[0] * b0 + tu->v[1] * b1 + tu->v[2] * b2;
+    ilk_vec3 kd = ilk_mul(m->diffuse, ilk_texture_sample(sc, &sc->textures[m->texture - 1], u, v));
+    kd = ilk_v3(ilk_maxf(kd.x, 0.0f), ilk_maxf(kd.y, 0.0f), ilk_maxf(kd.z, 0.0f));
+    if (m->type == ILK_MATERIAL_PHONG) {
+        ilk_vec3 ks = m->specular;
+        float peak = ilk_max3(ilk_add(kd, ks));
+        if (peak > 1.0f) {
+            kd = ilk_scale(kd, 1.0f / peak);
+            ks = ilk_scale(ks, 1.0f / peak);
+        }
+        float ld = ilk_luminance(kd), ls = ilk_luminance(ks);
+        r.diffuse_prob = ld + ls > 0.0f ? ld / (ld + ls) : 1.0f;
+        r.specular = ks;
+    }
+    r.diffuse = kd;
+    r.texture = 0;
+    return r;
 }
 
 /* p moved off its surface (geometric normal ng) to the side of dir, by the
@@ -299,6 +362,11 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         const ilk_tri *tr = &sc->bvh.tris[h.tri];
         ilk_bsdf b;
         b.m = &sc->materials[tr->pad];
+        ilk_material textured;
+        if (b.m->texture) {
+            textured = ilk_material_at(sc, b.m, h.tri, h.b1, h.b2);
+            b.m = &textured;
+        }
         ilk_surface_normals(sc, h.tri, h.b1, h.b2, &b.ng, &b.ns);
         ilk_vec3 wo = ilk_scale(ray.dir, -1.0f);
         if (counts_emission && (ilk_dot(b.ng, wo) > 0.0f || b.m->two_sided))
@@ -329,7 +397,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
          * of the throughput, 0.95) and divide by q, which keeps the
          * estimate unbiased. */
         if (depth >= 3) {
-            float q = ilk_minf(ilk_maxf(beta.x, ilk_maxf(beta.y, beta.z)), 0.95f);
+            float q = ilk_minf(ilk_max3(beta), 0.95f);
             float u_rr, u_unused;
             ilk_sobol_2d(&smp, &u_rr, &u_unused);
             if (!(u_rr < q))

@@ -27,8 +27,6 @@ typedef struct ilk_photon {
     ilk_vec3 n;
 } ilk_photon;
 
-IL_DEVICE_INLINE float ilk_luminance(ilk_vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-IL_DEVICE_INLINE float ilk_max3(ilk_vec3 c) { return ilk_maxf(c.x, ilk_maxf(c.y, c.z)); }
 
 IL_DEVICE_INLINE ilk_rng ilk_photon_rng(uint64_t seed, uint32_t index)
 {

@@ -13,14 +13,14 @@ static ilk_vec3 to_k(il_vec3 v) { return ilk_v3(v.x, v.y, v.z); }
 /* What the kernels cannot render yet, refused with a clear message: the
  * photon kernels (extended false) know untextured diffuse surfaces and
  * emissive triangles, the path kernel (extended true) also Phong, mirror
- * and glass surfaces, delta lights and a uniform sky. */
+ * and glass surfaces, diffuse textures, delta lights and a uniform sky. */
 static il_status check_supported(const il_scene *scene, bool extended, il_error *err)
 {
     for (uint32_t i = 0; i < scene->num_materials; i++) {
         const il_material *m = &scene->materials[i];
-        if (m->diffuse_texture)
+        if (!extended && m->diffuse_texture)
             return il_fail(err, IL_ERR_INVALID, "material '%s': textured materials do not run on the GPU "
-                           "yet (docs/cuda.md)", m->name);
+                           "photon kernels yet (docs/cuda.md)", m->name);
         if (!extended && m->type != IL_MATERIAL_DIFFUSE)
             return il_fail(err, IL_ERR_INVALID, "material '%s': only untextured diffuse materials run on "
                            "the GPU photon kernels so far (docs/cuda.md)", m->name);
@@ -36,7 +36,9 @@ static il_status check_supported(const il_scene *scene, bool extended, il_error 
 
 /* Materials as il_bsdf_init resolves them: colours clamped at zero, a
  * Phong's kd + ks scaled down to at most 1 per channel (Lafortune &
- * Willems 1994, section 3), its lobe chosen by the albedos' luminance. */
+ * Willems 1994, section 3), its lobe chosen by the albedos' luminance.  A
+ * textured material keeps its own colour and its clamped ks, for
+ * ilk_material_at to resolve with the texel at each hit. */
 static void pack_material(const il_material *m, ilk_material *k)
 {
     memset(k, 0, sizeof *k);
@@ -62,6 +64,53 @@ static void pack_material(const il_material *m, ilk_material *k)
     k->diffuse = to_k(kd);
     k->emission = to_k(m->emission);
     k->two_sided = m->two_sided;
+    k->texture = m->diffuse_texture;
+    if (k->texture) {
+        k->diffuse = to_k(m->diffuse);
+        k->specular = to_k(v3_max(m->specular, v3s(0.0f)));
+    }
+}
+
+/* The textures' texels end to end, and the texture coordinates of every
+ * triangle in leaf order, when a material has a texture. */
+static il_status pack_textures(const il_scene *scene, il_kscene *out, il_error *err)
+{
+    bool any = false;
+    for (uint32_t i = 0; i < scene->num_materials; i++)
+        any = any || scene->materials[i].diffuse_texture != 0;
+    if (!any || out->bvh.num_tris == 0)
+        return IL_OK;
+    uint64_t floats = 0;
+    for (uint32_t i = 0; i < scene->num_textures; i++)
+        floats += 3ull * scene->textures[i].width * scene->textures[i].height;
+    out->textures = il_calloc(scene->num_textures, sizeof *out->textures, err);
+    out->texels = il_malloc(sizeof *out->texels * (floats ? floats : 1), err);
+    out->uvs = il_calloc(out->bvh.num_tris, sizeof *out->uvs, err);
+    if (!out->textures || !out->texels || !out->uvs)
+        return IL_ERR_MEMORY;
+    out->num_textures = scene->num_textures;
+    out->num_texels = floats;
+    out->num_uvs = out->bvh.num_tris;
+    uint64_t at = 0;
+    for (uint32_t i = 0; i < scene->num_textures; i++) {
+        const il_texture *t = &scene->textures[i];
+        uint64_t n = 3ull * t->width * t->height;
+        out->textures[i] = (ilk_texture){t->width, t->height, at};
+        memcpy(out->texels + at, t->rgb, sizeof(float) * n);
+        at += n;
+    }
+    for (uint32_t i = 0; i < out->bvh.num_tris; i++) {
+        const ilk_tri *t = &out->bvh.tris[i];
+        const il_mesh *m = &scene->meshes[t->mesh];
+        if (!m->uvs)
+            continue;
+        const uint32_t *ix = m->indices + 3 * (size_t)t->prim;
+        for (int k = 0; k < 3; k++) {
+            out->uvs[i].u[k] = m->uvs[ix[k]].x;
+            out->uvs[i].v[k] = m->uvs[ix[k]].y;
+        }
+    }
+    return IL_OK;
 }
 
 /* The vertex normals of every triangle in leaf order, or none when no mesh
@@ -183,7 +232,8 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     }
     for (uint32_t i = 0; i < scene->num_materials; i++)
         pack_material(&scene->materials[i], &out->materials[i]);
-    if ((st = pack_normals(scene, out, err)) != IL_OK || (st = pack_lights(scene, out, err)) != IL_OK) {
+    if ((st = pack_normals(scene, out, err)) != IL_OK || (st = pack_lights(scene, out, err)) != IL_OK ||
+        (st = pack_textures(scene, out, err)) != IL_OK) {
         il_kscene_free(out);
         return st;
     }
@@ -202,6 +252,9 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     v->pt_light_cdf = out->pt_light_cdf;
     v->num_pt_lights = out->num_pt_lights;
     v->normals = out->normals;
+    v->uvs = out->uvs;
+    v->textures = out->textures;
+    v->texels = out->texels;
     /* A uniform sky (a map is refused above). */
     v->has_environment = scene->has_environment ? 1u : 0u;
     v->environment = scene->has_environment ? to_k(scene->environment.radiance) : ilk_v3(0, 0, 0);
@@ -242,5 +295,8 @@ void il_kscene_free(il_kscene *ks)
     free(ks->pt_lights);
     free(ks->pt_light_cdf);
     free(ks->normals);
+    free(ks->uvs);
+    free(ks->textures);
+    free(ks->texels);
     memset(ks, 0, sizeof *ks);
 }

@@ -21,18 +21,21 @@ typedef struct il_kscene {
     ilk_light *pt_lights;     uint32_t num_pt_lights;
     float *pt_light_cdf;      /* num_pt_lights + 1 */
     ilk_tri_normals *normals; uint32_t num_normals;  /* bvh.num_tris, or 0 when no mesh has normals */
+    ilk_tri_uvs *uvs;         uint32_t num_uvs;      /* bvh.num_tris, or 0 when no material has a texture */
+    ilk_texture *textures;    uint32_t num_textures;
+    float *texels;            uint64_t num_texels;
     ilk_scene view;           /* host pointers into the arrays above */
 } il_kscene;
 
-/* IL_ERR_INVALID when the scene needs what the kernel does not do yet
- * (non-diffuse materials, textures, point/spot/directional lights, an
+/* IL_ERR_INVALID when the scene needs what the photon kernels do not do
+ * yet (non-diffuse materials, textures, point/spot/directional lights, an
  * environment): the caller falls back to, or points the user at, the CPU. */
 il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
                           uint64_t seed, il_kscene *out, il_error *err);
 /* il_kscene_build for the path kernel alone (kernel_path.h), which also
- * renders Phong, mirror and dielectric materials, point, spot and
- * directional lights and a uniform environment; IL_ERR_INVALID for
- * textured materials and environment maps.  The photon kernels must not take its result (they
+ * renders Phong, mirror and dielectric materials, diffuse textures, point,
+ * spot and directional lights and a uniform environment; IL_ERR_INVALID
+ * for environment maps.  The photon kernels must not take its result (they
  * know only diffuse surfaces and emissive triangles). */
 il_status il_kscene_build_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
                              uint64_t seed, il_kscene *out, il_error *err);

@@ -3,7 +3,8 @@
  * kernel compiled by gcc with the same random streams: the same image and
  * ray count up to float rounding (the GPU's sinf/cosf can send a few paths
  * another way), and (b) the CPU path tracer il_render: the same mean
- * radiance within noise.  Then the progressive render's stops (il_cuda_run):
+ * radiance within noise; the same for the Cornell box with a textured
+ * panel.  Then the progressive render's stops (il_cuda_run):
  * by its progress callback and by its time limit.  Exits 77 (a skip for
  * ctest) without a GPU or driver, as on CI. */
 #include <stdlib.h>
@@ -25,7 +26,7 @@ static void compare(il_scene *s)
     CHECK_OK(il_cuda_render_pt(s, W, H, SPP, 8, 3, gpu, &run, &err), &err);
 
     il_kscene ks;
-    CHECK_OK(il_kscene_build(s, W, H, 8, 3, &ks, &err), &err);
+    CHECK_OK(il_kscene_build_pt(s, W, H, 8, 3, &ks, &err), &err);
     uint64_t cpu_rays = 0;
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
@@ -50,6 +51,37 @@ static void compare(il_scene *s)
     cuda_test_compare(s, W, H, gpu, cpu, SPP, 0.03);
     free(gpu);
     free(cpu);
+}
+
+/* The Cornell box with a checker-textured Phong panel on its floor (its
+ * kd + ks above 1 where the checker is bright: scaled per hit). */
+static il_scene *textured_cornell(void)
+{
+    il_error err = {0};
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
+    if (!s)
+        return NULL;
+    float tx[8 * 8 * 3];
+    for (int i = 0; i < 64; i++)
+        for (int c = 0; c < 3; c++)
+            tx[3 * i + c] = ((i % 8) / 2 + (i / 8) / 2) % 2 ? 0.9f - 0.2f * c : 0.1f + 0.15f * c;
+    uint32_t tex = 0, mat = 0;
+    CHECK_OK(il_scene_add_texture(s, 8, 8, tx, &tex, &err), &err);
+    CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "checker", .type = IL_MATERIAL_PHONG,
+                                   .diffuse = {1.0f, 0.9f, 0.8f}, .specular = {0.3f, 0.3f, 0.3f},
+                                   .exponent = 20.0f, .diffuse_texture = tex}, &mat, &err), &err);
+    float p[] = {0.1f, 0.01f, 0.1f, 0.45f, 0.01f, 0.1f, 0.45f, 0.01f, 0.45f, 0.1f, 0.01f, 0.45f};
+    float uv[] = {0, 0, 2, 0, 2, 2, 0, 2};
+    uint32_t ix[] = {0, 2, 1, 0, 3, 2}; /* facing up */
+    CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = p, .uvs = uv,
+                                                   .indices = ix, .material = mat}, &err), &err);
+    if (il_scene_commit(s, &err) != IL_OK) {
+        CHECK_OK(IL_ERR_INVALID, &err);
+        il_scene_release(s);
+        return NULL;
+    }
+    return s;
 }
 
 /* Stops the render at its second report. */
@@ -97,6 +129,12 @@ int main(void)
 
     /* The Cornell box with the Stanford dragon (47,806 triangles). */
     s = load_committed(IL_SOURCE_DIR "/bench/scenes/cornell-dragon.json");
+    if (s) {
+        compare(s);
+        il_scene_release(s);
+    }
+    /* A diffuse texture (ilk_material_at). */
+    s = textured_cornell();
     if (s) {
         compare(s);
         il_scene_release(s);

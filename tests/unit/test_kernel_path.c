@@ -132,13 +132,14 @@ static void compare(const char *scene, setup q)
 }
 
 /* The lights of the small open scene below. */
-typedef enum test_light { POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR } test_light;
+typedef enum test_light { POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR, TEXTURED } test_light;
 
 /* A small open scene: a glossy Phong floor, a diffuse back wall and a
  * smooth-shaded (vertex normals) Phong sphere, lit by one kind of light;
  * GLASS_AND_MIRROR makes the sphere glass and the wall a mirror, lit by the
  * sun, the sky and an emissive panel (caustics and emitters seen through
- * delta surfaces). */
+ * delta surfaces); TEXTURED puts a checker texture on the floor (Phong)
+ * and on the wall (diffuse), lit by a point light. */
 static il_scene *small_scene(test_light kind)
 {
     il_error err = {0};
@@ -146,11 +147,23 @@ static il_scene *small_scene(test_light kind)
     CHECK_OK(il_scene_create(&s, &err), &err);
     if (!s)
         return NULL;
-    uint32_t floor_m, wall_m, ball_m;
-    CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "floor", .type = IL_MATERIAL_PHONG,
-                                   .diffuse = {0.5f, 0.45f, 0.4f}, .specular = {0.3f, 0.3f, 0.3f},
-                                   .exponent = 20.0f}, &floor_m, &err), &err);
-    il_material_desc wall = {.name = "wall", .diffuse = {0.3f, 0.6f, 0.3f}};
+    uint32_t floor_m, wall_m, ball_m, checker = 0;
+    if (kind == TEXTURED) {
+        /* 8x8 texels in squares of 2: a bright warm and a dark cool colour. */
+        float tx[8 * 8 * 3];
+        for (int i = 0; i < 64; i++)
+            for (int c = 0; c < 3; c++)
+                tx[3 * i + c] = ((i % 8) / 2 + (i / 8) / 2) % 2 ? 0.9f - 0.2f * c : 0.1f + 0.15f * c;
+        CHECK_OK(il_scene_add_texture(s, 8, 8, tx, &checker, &err), &err);
+    }
+    /* Textured, its kd + ks exceeds 1 where the checker is bright: scaled
+     * down per hit (il_bsdf_init, ilk_material_at). */
+    il_material_desc floor = {.name = "floor", .type = IL_MATERIAL_PHONG, .diffuse = {0.5f, 0.45f, 0.4f},
+                              .specular = {0.3f, 0.3f, 0.3f}, .exponent = 20.0f, .diffuse_texture = checker};
+    if (kind == TEXTURED)
+        floor.diffuse = (il_vec3){1.0f, 0.9f, 0.8f};
+    CHECK_OK(il_scene_add_material(s, &floor, &floor_m, &err), &err);
+    il_material_desc wall = {.name = "wall", .diffuse = {0.3f, 0.6f, 0.3f}, .diffuse_texture = checker};
     il_material_desc ball = {.name = "ball", .type = IL_MATERIAL_PHONG, .diffuse = {0.2f, 0.1f, 0.05f},
                              .specular = {0.6f, 0.45f, 0.2f}, .exponent = 60.0f};
     if (kind == GLASS_AND_MIRROR) {
@@ -161,11 +174,15 @@ static il_scene *small_scene(test_light kind)
     CHECK_OK(il_scene_add_material(s, &ball, &ball_m, &err), &err);
     float floor_p[] = {-3, 0, -2, 3, 0, -2, 3, 0, 3, -3, 0, 3};
     float wall_p[] = {-3, 0, -2, 3, 0, -2, 3, 3, -2, -3, 3, -2};
+    /* The checker repeats (the texture wraps) 3 times across the floor. */
+    float floor_uv[] = {0, 0, 3, 0, 3, 2.5f, 0, 2.5f}, wall_uv[] = {0, 0, 2, 0, 2, 1, 0, 1};
     uint32_t quad_up[] = {0, 2, 1, 0, 3, 2}, quad_front[] = {0, 1, 2, 0, 2, 3};
     CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = floor_p,
-                                                   .indices = quad_up, .material = floor_m}, &err), &err);
+                                                   .uvs = floor_uv, .indices = quad_up, .material = floor_m},
+                               &err), &err);
     CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = wall_p,
-                                                   .indices = quad_front, .material = wall_m}, &err), &err);
+                                                   .uvs = wall_uv, .indices = quad_front, .material = wall_m},
+                               &err), &err);
     /* A UV sphere of radius 0.8 at (0, 0.8, 0): rows of latitude, outward
      * normals, counter-clockwise seen from outside. */
     enum { ROWS = 10, COLS = 16 };
@@ -204,6 +221,7 @@ static il_scene *small_scene(test_light kind)
     }
     il_light_desc l = {0};
     switch (kind) {
+    case TEXTURED:
     case POINT_LIGHT:
         l = (il_light_desc){.type = IL_LIGHT_POINT, .position = {1.5f, 2.5f, 1.5f}, .intensity = {8, 7, 6}};
         break;
@@ -304,7 +322,7 @@ static void test_refused(void)
     check_refusal(&diffuse, true, false, false, true, "point");
     check_refusal(&mirror, false, false, false, true, "'m'");
     check_refusal(&glass, false, false, false, true, "'g'");
-    check_refusal(&textured, false, false, false, false, "'t'");
+    check_refusal(&textured, false, false, false, true, "'t'");
     check_refusal(&diffuse, false, true, false, false, "environment map");
 }
 
@@ -318,6 +336,7 @@ int main(void)
     compare_small(SPOT_LIGHT, "phong + spot light", (setup){32, 32, 256, 8, 0.03});
     compare_small(SUN_AND_SKY, "phong + sun + sky", (setup){32, 32, 256, 8, 0.03});
     compare_small(GLASS_AND_MIRROR, "glass + mirror + panel + sun + sky", (setup){32, 32, 256, 8, 0.03});
+    compare_small(TEXTURED, "textured phong + diffuse, point light", (setup){32, 32, 256, 8, 0.03});
     compare("atrium", (setup){32, 24, 64, 8, 0.05});
     test_refused();
     return check_report();
