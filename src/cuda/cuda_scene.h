@@ -41,6 +41,7 @@ typedef struct il_cuda_scene {
     ilk_tri_uvs *uvs;              /* NULL without textures */
     ilk_texture *textures;
     float *texels;
+    float *env_texels;             /* NULL without an environment map */
     ilk_scene view;                /* ks->view with the device pointers */
 } il_cuda_scene;
 
@@ -57,6 +58,7 @@ static inline void il_cuda_scene_free(il_cuda_scene *d)
     cudaFree(d->uvs);
     cudaFree(d->textures);
     cudaFree(d->texels);
+    cudaFree(d->env_texels);
     memset(d, 0, sizeof *d);
 }
 
@@ -78,7 +80,10 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
         (ks->uvs &&
          ((st = il_cuda_upload(&d->uvs, ks->uvs, ks->num_uvs, "uploading the texture coordinates", err)) != IL_OK ||
           (st = il_cuda_upload(&d->textures, ks->textures, ks->num_textures, "uploading the textures", err)) != IL_OK ||
-          (st = il_cuda_upload(&d->texels, ks->texels, ks->num_texels, "uploading the texels", err)) != IL_OK))) {
+          (st = il_cuda_upload(&d->texels, ks->texels, ks->num_texels, "uploading the texels", err)) != IL_OK)) ||
+        (ks->env_texels &&
+         (st = il_cuda_upload(&d->env_texels, ks->env_texels, 3 * (size_t)ks->env_width * ks->env_height,
+                              "uploading the environment map", err)) != IL_OK)) {
         il_cuda_scene_free(d);
         return st;
     }
@@ -94,6 +99,7 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.uvs = d->uvs;
     d->view.textures = d->textures;
     d->view.texels = d->texels;
+    d->view.env_texels = d->env_texels;
     return IL_OK;
 }
 

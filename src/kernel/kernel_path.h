@@ -85,8 +85,15 @@ typedef struct ilk_scene {
     const ilk_light *pt_lights;
     const float *pt_light_cdf;
     uint32_t num_pt_lights;
-    uint32_t has_environment;      /* a uniform sky of radiance `environment` */
+    uint32_t has_environment;      /* a sky: uniform radiance `environment`, or the map below */
     ilk_vec3 environment;
+    /* An environment map (NULL: none) as a latitude-longitude map of
+     * env_width x env_height texels (3 floats each, rows from +y down; an
+     * angular or cross map resampled to one), turned by the scene's
+     * rotation about +y (image/envmap.h's il_envmap_to_local). */
+    const float *env_texels;
+    uint32_t env_width, env_height;
+    float env_cos_rot, env_sin_rot;
     const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
     const ilk_tri_uvs *uvs;        /* per triangle; NULL when no material has a texture */
     const ilk_texture *textures;
@@ -165,6 +172,38 @@ IL_DEVICE_INLINE void ilk_surface_normals(const ilk_scene *sc, uint32_t tri, flo
         if (ilk_dot(*ns, *ng) < 0.0f)
             *ng = ilk_scale(*ng, -1.0f);
     }
+}
+
+/* The radiance arriving from world direction d: the uniform sky, or the
+ * map's bilinear value as image/envmap.c's il_envmap_lookup reads a
+ * latitude-longitude map (u wraps around, v is clamped). */
+IL_DEVICE_INLINE ilk_vec3 ilk_environment(const ilk_scene *sc, ilk_vec3 d)
+{
+    if (!sc->env_texels)
+        return sc->environment;
+    float c = sc->env_cos_rot, s = sc->env_sin_rot;
+    ilk_vec3 l = ilk_v3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    if (!(fabsf(l.x) < INFINITY && fabsf(l.y) < INFINITY && fabsf(l.z) < INFINITY) ||
+        (l.x == 0.0f && l.y == 0.0f && l.z == 0.0f))
+        return ilk_v3(0, 0, 0);
+    float theta = atan2f(sqrtf(l.x * l.x + l.z * l.z), l.y), phi = atan2f(l.x, -l.z);
+    float u = ilk_minf(ilk_maxf(0.5f + phi * ILK_INV_2PI, 0.0f), 1.0f);
+    float v = ilk_minf(ilk_maxf(theta * ILK_INV_PI, 0.0f), 1.0f);
+    uint32_t w = sc->env_width, h = sc->env_height;
+    float x = u * (float)w - 0.5f, fx = floorf(x), tx = x - fx;
+    long k = (long)fx % (long)w;
+    if (k < 0)
+        k += w;
+    uint32_t x0 = (uint32_t)k, x1 = x0 + 1 == w ? 0 : x0 + 1;
+    float y = v * (float)h - 0.5f, fy = floorf(y), ty = y - fy;
+    long j = (long)fy;
+    uint32_t y0 = (uint32_t)(j < 0 ? 0 : (j >= (long)h ? (long)h - 1 : j));
+    uint32_t y1 = (uint32_t)(j + 1 < 0 ? 0 : (j + 1 >= (long)h ? (long)h - 1 : j + 1));
+    const float *t00 = sc->env_texels + 3 * ((uint64_t)y0 * w + x0), *t10 = sc->env_texels + 3 * ((uint64_t)y0 * w + x1);
+    const float *t01 = sc->env_texels + 3 * ((uint64_t)y1 * w + x0), *t11 = sc->env_texels + 3 * ((uint64_t)y1 * w + x1);
+    ilk_vec3 top = ilk_add(ilk_scale(ilk_v3(t00[0], t00[1], t00[2]), 1.0f - tx), ilk_scale(ilk_v3(t10[0], t10[1], t10[2]), tx));
+    ilk_vec3 bot = ilk_add(ilk_scale(ilk_v3(t01[0], t01[1], t01[2]), 1.0f - tx), ilk_scale(ilk_v3(t11[0], t11[1], t11[2]), tx));
+    return ilk_add(ilk_scale(top, 1.0f - ty), ilk_scale(bot, ty));
 }
 
 /* The texture at (u, v): bilinear, wrapping, v = 0 the bottom row, as
@@ -356,7 +395,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         ++*rays;
         if (!ilk_bvh_closest(&sc->bvh, &ray, &h)) {
             if (sc->has_environment)
-                L = ilk_add(L, ilk_mul(beta, sc->environment));
+                L = ilk_add(L, ilk_mul(beta, ilk_environment(sc, ray.dir)));
             break;
         }
         const ilk_tri *tr = &sc->bvh.tris[h.tri];

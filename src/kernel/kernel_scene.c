@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "core/error.h"
+#include "image/envmap.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "trace/trace.h"
@@ -13,7 +14,8 @@ static ilk_vec3 to_k(il_vec3 v) { return ilk_v3(v.x, v.y, v.z); }
 /* What the kernels cannot render yet, refused with a clear message: the
  * photon kernels (extended false) know untextured diffuse surfaces and
  * emissive triangles, the path kernel (extended true) also Phong, mirror
- * and glass surfaces, diffuse textures, delta lights and a uniform sky. */
+ * and glass surfaces, diffuse textures, delta lights and a sky, uniform or
+ * a map. */
 static il_status check_supported(const il_scene *scene, bool extended, il_error *err)
 {
     for (uint32_t i = 0; i < scene->num_materials; i++) {
@@ -28,9 +30,6 @@ static il_status check_supported(const il_scene *scene, bool extended, il_error 
     if (!extended && (scene->num_user_lights || scene->has_environment))
         return il_fail(err, IL_ERR_INVALID, "only emissive triangles light a GPU render so far "
                        "(no point, spot or directional lights, no environment; docs/cuda.md)");
-    if (extended && scene->has_environment && scene->envmap)
-        return il_fail(err, IL_ERR_INVALID, "only a uniform environment runs on the GPU so far, "
-                       "not an environment map (docs/cuda.md)");
     return IL_OK;
 }
 
@@ -138,6 +137,41 @@ static il_status pack_normals(const il_scene *scene, il_kscene *out, il_error *e
     return IL_OK;
 }
 
+/* The environment map as a latitude-longitude map in its own frame (the
+ * rotation stays with the kernel): a latitude-longitude map as it is, an
+ * angular or cross map resampled at the texel centres of one twice as wide
+ * as tall (as tall as the probe, or as two cross faces) with the CPU's own
+ * bilinear lookup. */
+static il_status pack_envmap(const il_scene *scene, il_kscene *out, il_error *err)
+{
+    const il_envmap *env = scene->envmap;
+    if (!scene->has_environment || !env)
+        return IL_OK;
+    const il_image *img = &env->img;
+    bool latlong = env->mapping == IL_ENV_LATLONG;
+    uint32_t h = latlong ? img->height : env->mapping == IL_ENV_ANGULAR ? img->height : 2 * (img->width / 3);
+    uint32_t w = latlong ? img->width : 2 * h;
+    if (w == 0 || h == 0)
+        return IL_OK;
+    out->env_texels = il_malloc(sizeof(float) * 3 * (size_t)w * h, err);
+    if (!out->env_texels)
+        return IL_ERR_MEMORY;
+    out->env_width = w;
+    out->env_height = h;
+    if (latlong) {
+        memcpy(out->env_texels, img->rgb, sizeof(float) * 3 * (size_t)w * h);
+        return IL_OK;
+    }
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            il_vec3 d = il_envmap_latlong_dir(((float)x + 0.5f) / (float)w, ((float)y + 0.5f) / (float)h);
+            il_vec3 L = il_envmap_lookup(img, env->mapping, d);
+            float *t = out->env_texels + 3 * ((size_t)y * w + x);
+            t[0] = L.x, t[1] = L.y, t[2] = L.z;
+        }
+    return IL_OK;
+}
+
 /* cdf[0..n] of the weights w (uniform when they sum to zero). */
 static void fill_cdf(float *cdf, const double *w, uint32_t n)
 {
@@ -233,7 +267,7 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     for (uint32_t i = 0; i < scene->num_materials; i++)
         pack_material(&scene->materials[i], &out->materials[i]);
     if ((st = pack_normals(scene, out, err)) != IL_OK || (st = pack_lights(scene, out, err)) != IL_OK ||
-        (st = pack_textures(scene, out, err)) != IL_OK) {
+        (st = pack_textures(scene, out, err)) != IL_OK || (st = pack_envmap(scene, out, err)) != IL_OK) {
         il_kscene_free(out);
         return st;
     }
@@ -255,9 +289,14 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     v->uvs = out->uvs;
     v->textures = out->textures;
     v->texels = out->texels;
-    /* A uniform sky (a map is refused above). */
+    /* A uniform sky, or a map (pack_envmap). */
     v->has_environment = scene->has_environment ? 1u : 0u;
     v->environment = scene->has_environment ? to_k(scene->environment.radiance) : ilk_v3(0, 0, 0);
+    v->env_texels = out->env_texels;
+    v->env_width = out->env_width;
+    v->env_height = out->env_height;
+    v->env_cos_rot = scene->envmap ? scene->envmap->cos_rot : 1.0f;
+    v->env_sin_rot = scene->envmap ? scene->envmap->sin_rot : 0.0f;
     v->epsilon = il_trace_epsilon(scene->tracer);
     v->camera.position = to_k(cam.position);
     v->camera.forward = to_k(cam.forward);
@@ -298,5 +337,6 @@ void il_kscene_free(il_kscene *ks)
     free(ks->uvs);
     free(ks->textures);
     free(ks->texels);
+    free(ks->env_texels);
     memset(ks, 0, sizeof *ks);
 }

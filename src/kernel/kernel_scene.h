@@ -24,6 +24,7 @@ typedef struct il_kscene {
     ilk_tri_uvs *uvs;         uint32_t num_uvs;      /* bvh.num_tris, or 0 when no material has a texture */
     ilk_texture *textures;    uint32_t num_textures;
     float *texels;            uint64_t num_texels;
+    float *env_texels;        uint32_t env_width, env_height; /* NULL without an environment map */
     ilk_scene view;           /* host pointers into the arrays above */
 } il_kscene;
 
@@ -34,8 +35,7 @@ il_status il_kscene_build(const il_scene *scene, uint32_t width, uint32_t height
                           uint64_t seed, il_kscene *out, il_error *err);
 /* il_kscene_build for the path kernel alone (kernel_path.h), which also
  * renders Phong, mirror and dielectric materials, diffuse textures, point,
- * spot and directional lights and a uniform environment; IL_ERR_INVALID
- * for environment maps.  The photon kernels must not take its result (they
+ * spot and directional lights and an environment, uniform or a map.  The photon kernels must not take its result (they
  * know only diffuse surfaces and emissive triangles). */
 il_status il_kscene_build_pt(const il_scene *scene, uint32_t width, uint32_t height, uint32_t max_depth,
                              uint64_t seed, il_kscene *out, il_error *err);

@@ -4,7 +4,7 @@
  * ray count up to float rounding (the GPU's sinf/cosf can send a few paths
  * another way), and (b) the CPU path tracer il_render: the same mean
  * radiance within noise; the same for the Cornell box with a textured
- * panel.  Then the progressive render's stops (il_cuda_run):
+ * panel and lit by an environment map.  Then the progressive render's stops (il_cuda_run):
  * by its progress callback and by its time limit.  Exits 77 (a skip for
  * ctest) without a GPU or driver, as on CI. */
 #include <stdlib.h>
@@ -54,28 +54,45 @@ static void compare(il_scene *s)
 }
 
 /* The Cornell box with a checker-textured Phong panel on its floor (its
- * kd + ks above 1 where the checker is bright: scaled per hit). */
-static il_scene *textured_cornell(void)
+ * kd + ks above 1 where the checker is bright: scaled per hit), or lit
+ * through its open front by a latitude-longitude environment map turned by
+ * 40 degrees (a bright patch in a gradient). */
+static il_scene *cornell_with(bool panel, bool env_map)
 {
     il_error err = {0};
     il_scene *s = NULL;
     CHECK_OK(il_scene_load("cornell", NULL, &s, &err), &err);
     if (!s)
         return NULL;
-    float tx[8 * 8 * 3];
-    for (int i = 0; i < 64; i++)
-        for (int c = 0; c < 3; c++)
-            tx[3 * i + c] = ((i % 8) / 2 + (i / 8) / 2) % 2 ? 0.9f - 0.2f * c : 0.1f + 0.15f * c;
-    uint32_t tex = 0, mat = 0;
-    CHECK_OK(il_scene_add_texture(s, 8, 8, tx, &tex, &err), &err);
-    CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "checker", .type = IL_MATERIAL_PHONG,
-                                   .diffuse = {1.0f, 0.9f, 0.8f}, .specular = {0.3f, 0.3f, 0.3f},
-                                   .exponent = 20.0f, .diffuse_texture = tex}, &mat, &err), &err);
-    float p[] = {0.1f, 0.01f, 0.1f, 0.45f, 0.01f, 0.1f, 0.45f, 0.01f, 0.45f, 0.1f, 0.01f, 0.45f};
-    float uv[] = {0, 0, 2, 0, 2, 2, 0, 2};
-    uint32_t ix[] = {0, 2, 1, 0, 3, 2}; /* facing up */
-    CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = p, .uvs = uv,
-                                                   .indices = ix, .material = mat}, &err), &err);
+    if (panel) {
+        float tx[8 * 8 * 3];
+        for (int i = 0; i < 64; i++)
+            for (int c = 0; c < 3; c++)
+                tx[3 * i + c] = ((i % 8) / 2 + (i / 8) / 2) % 2 ? 0.9f - 0.2f * c : 0.1f + 0.15f * c;
+        uint32_t tex = 0, mat = 0;
+        CHECK_OK(il_scene_add_texture(s, 8, 8, tx, &tex, &err), &err);
+        CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "checker", .type = IL_MATERIAL_PHONG,
+                                       .diffuse = {1.0f, 0.9f, 0.8f}, .specular = {0.3f, 0.3f, 0.3f},
+                                       .exponent = 20.0f, .diffuse_texture = tex}, &mat, &err), &err);
+        float p[] = {0.1f, 0.01f, 0.1f, 0.45f, 0.01f, 0.1f, 0.45f, 0.01f, 0.45f, 0.1f, 0.01f, 0.45f};
+        float uv[] = {0, 0, 2, 0, 2, 2, 0, 2};
+        uint32_t ix[] = {0, 2, 1, 0, 3, 2}; /* facing up */
+        CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = p,
+                                                       .uvs = uv, .indices = ix, .material = mat}, &err), &err);
+    }
+    if (env_map) {
+        float px[32 * 16 * 3];
+        for (uint32_t y = 0; y < 16; y++)
+            for (uint32_t x = 0; x < 32; x++) {
+                float t = y / 16.0f, *q = px + 3 * (y * 32 + x);
+                bool patch = y >= 5 && y < 8 && x >= 14 && x < 18;
+                q[0] = patch ? 12.0f : 0.2f + 0.4f * t;
+                q[1] = patch ? 11.0f : 0.3f + 0.1f * t;
+                q[2] = patch ? 9.0f : 0.6f - 0.4f * t;
+            }
+        il_image map = {.width = 32, .height = 16, .rgb = px};
+        CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.map = &map, .rotation = 40.0f}, &err), &err);
+    }
     if (il_scene_commit(s, &err) != IL_OK) {
         CHECK_OK(IL_ERR_INVALID, &err);
         il_scene_release(s);
@@ -133,11 +150,13 @@ int main(void)
         compare(s);
         il_scene_release(s);
     }
-    /* A diffuse texture (ilk_material_at). */
-    s = textured_cornell();
-    if (s) {
-        compare(s);
-        il_scene_release(s);
+    /* A diffuse texture (ilk_material_at), an environment map (ilk_environment). */
+    for (int v = 0; v < 2; v++) {
+        s = cornell_with(v == 0, v == 1);
+        if (s) {
+            compare(s);
+            il_scene_release(s);
+        }
     }
     return check_report();
 }

@@ -132,14 +132,18 @@ static void compare(const char *scene, setup q)
 }
 
 /* The lights of the small open scene below. */
-typedef enum test_light { POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR, TEXTURED } test_light;
+typedef enum test_light {
+    POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR, TEXTURED, LATLONG_MAP, ANGULAR_MAP
+} test_light;
 
 /* A small open scene: a glossy Phong floor, a diffuse back wall and a
  * smooth-shaded (vertex normals) Phong sphere, lit by one kind of light;
  * GLASS_AND_MIRROR makes the sphere glass and the wall a mirror, lit by the
  * sun, the sky and an emissive panel (caustics and emitters seen through
  * delta surfaces); TEXTURED puts a checker texture on the floor (Phong)
- * and on the wall (diffuse), lit by a point light. */
+ * and on the wall (diffuse), lit by a point light; LATLONG_MAP and
+ * ANGULAR_MAP light it by an environment map alone (a bright patch in a
+ * blue-to-brown gradient, turned 40 degrees about +y). */
 static il_scene *small_scene(test_light kind)
 {
     il_error err = {0};
@@ -220,7 +224,29 @@ static il_scene *small_scene(test_light kind)
                                                        .indices = quad_front, .material = lamp}, &err), &err);
     }
     il_light_desc l = {0};
+    if (kind == LATLONG_MAP || kind == ANGULAR_MAP) {
+        /* 32 x 16 (latitude-longitude) or 16 x 16 (angular) texels; the
+         * patch is a few texels near the top. */
+        enum { MW = 32, MH = 16 };
+        float px[MW * MH * 3];
+        uint32_t w = kind == LATLONG_MAP ? MW : MH;
+        for (uint32_t y = 0; y < MH; y++)
+            for (uint32_t x = 0; x < w; x++) {
+                float t = (float)y / MH, *p = px + 3 * (y * w + x);
+                bool patch = y >= 3 && y < 5 && x >= w / 4 && x < w / 4 + 3;
+                p[0] = patch ? 12.0f : 0.2f + 0.4f * t;
+                p[1] = patch ? 11.0f : 0.3f + 0.1f * t;
+                p[2] = patch ? 9.0f : 0.6f - 0.4f * t;
+            }
+        il_image map = {.width = w, .height = MH, .rgb = px};
+        CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.map = &map, .rotation = 40.0f,
+                                          .mapping = kind == LATLONG_MAP ? IL_ENV_LATLONG : IL_ENV_ANGULAR},
+                                          &err), &err);
+    }
     switch (kind) {
+    case LATLONG_MAP:
+    case ANGULAR_MAP:
+        break;
     case TEXTURED:
     case POINT_LIGHT:
         l = (il_light_desc){.type = IL_LIGHT_POINT, .position = {1.5f, 2.5f, 1.5f}, .intensity = {8, 7, 6}};
@@ -238,7 +264,8 @@ static il_scene *small_scene(test_light kind)
                  &err);
         break;
     }
-    CHECK_OK(il_scene_add_light(s, &l, &err), &err);
+    if (kind != LATLONG_MAP && kind != ANGULAR_MAP)
+        CHECK_OK(il_scene_add_light(s, &l, &err), &err);
     /* Glass: closer, so that the sphere (and its Fresnel rim) fills the view. */
     il_camera_desc cam = {.position = {0.5f, 2.2f, 5.0f}, .target = {0, 0.7f, 0}, .fov_y = 45.0f};
     if (kind == GLASS_AND_MIRROR)
@@ -323,7 +350,7 @@ static void test_refused(void)
     check_refusal(&mirror, false, false, false, true, "'m'");
     check_refusal(&glass, false, false, false, true, "'g'");
     check_refusal(&textured, false, false, false, true, "'t'");
-    check_refusal(&diffuse, false, true, false, false, "environment map");
+    check_refusal(&diffuse, false, true, false, true, "environment");
 }
 
 int main(void)
@@ -337,6 +364,8 @@ int main(void)
     compare_small(SUN_AND_SKY, "phong + sun + sky", (setup){32, 32, 256, 8, 0.03});
     compare_small(GLASS_AND_MIRROR, "glass + mirror + panel + sun + sky", (setup){32, 32, 256, 8, 0.03});
     compare_small(TEXTURED, "textured phong + diffuse, point light", (setup){32, 32, 256, 8, 0.03});
+    compare_small(LATLONG_MAP, "latitude-longitude map", (setup){32, 32, 256, 8, 0.03});
+    compare_small(ANGULAR_MAP, "angular map (resampled)", (setup){32, 32, 256, 8, 0.03});
     compare("atrium", (setup){32, 24, 64, 8, 0.05});
     test_refused();
     return check_report();
