@@ -1,7 +1,7 @@
 /* The path-tracing megakernel: one thread per pixel runs ilk_path_sample
  * (kernel/kernel_path.h, the code the CPU tests check against il_render)
  * for a batch of its samples, progressively (cuda/cuda_image.h).  The scene
- * is packed by il_kscene_build_pt (Phong, delta lights, a uniform sky) and
+ * is packed by il_kscene_build_pt (Phong, textures, delta lights, a sky) and
  * its flat arrays are copied with cudaMalloc/cudaMemcpy;
  * nothing is managed memory. */
 #include "cuda/cuda_backend.h"

@@ -174,6 +174,12 @@ IL_DEVICE_INLINE void ilk_surface_normals(const ilk_scene *sc, uint32_t tri, flo
     }
 }
 
+/* Texel i of an array of RGB floats. */
+IL_DEVICE_INLINE ilk_vec3 ilk_texel(const float *t, uint64_t i)
+{
+    return ilk_v3(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+}
+
 /* The radiance arriving from world direction d: the uniform sky, or the
  * map's bilinear value as image/envmap.c's il_envmap_lookup reads a
  * latitude-longitude map (u wraps around, v is clamped). */
@@ -199,10 +205,10 @@ IL_DEVICE_INLINE ilk_vec3 ilk_environment(const ilk_scene *sc, ilk_vec3 d)
     long j = (long)fy;
     uint32_t y0 = (uint32_t)(j < 0 ? 0 : (j >= (long)h ? (long)h - 1 : j));
     uint32_t y1 = (uint32_t)(j + 1 < 0 ? 0 : (j + 1 >= (long)h ? (long)h - 1 : j + 1));
-    const float *t00 = sc->env_texels + 3 * ((uint64_t)y0 * w + x0), *t10 = sc->env_texels + 3 * ((uint64_t)y0 * w + x1);
-    const float *t01 = sc->env_texels + 3 * ((uint64_t)y1 * w + x0), *t11 = sc->env_texels + 3 * ((uint64_t)y1 * w + x1);
-    ilk_vec3 top = ilk_add(ilk_scale(ilk_v3(t00[0], t00[1], t00[2]), 1.0f - tx), ilk_scale(ilk_v3(t10[0], t10[1], t10[2]), tx));
-    ilk_vec3 bot = ilk_add(ilk_scale(ilk_v3(t01[0], t01[1], t01[2]), 1.0f - tx), ilk_scale(ilk_v3(t11[0], t11[1], t11[2]), tx));
+    const float *t = sc->env_texels;
+    uint64_t r0 = (uint64_t)y0 * w, r1 = (uint64_t)y1 * w;
+    ilk_vec3 top = ilk_add(ilk_scale(ilk_texel(t, r0 + x0), 1.0f - tx), ilk_scale(ilk_texel(t, r0 + x1), tx));
+    ilk_vec3 bot = ilk_add(ilk_scale(ilk_texel(t, r1 + x0), 1.0f - tx), ilk_scale(ilk_texel(t, r1 + x1), tx));
     return ilk_add(ilk_scale(top, 1.0f - ty), ilk_scale(bot, ty));
 }
 
@@ -218,9 +224,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_texture_sample(const ilk_scene *sc, const ilk_text
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
             int xi = ((x0 + i) % w + w) % w, yi = ((y0 + j) % h + h) % h;
-            const float *px = sc->texels + t->offset + 3 * ((uint64_t)yi * t->width + (uint64_t)xi);
             float wt = (i ? tx : 1.0f - tx) * (j ? ty : 1.0f - ty);
-            acc = ilk_add(acc, ilk_scale(ilk_v3(px[0], px[1], px[2]), wt));
+            acc = ilk_add(acc, ilk_scale(ilk_texel(sc->texels + t->offset, (uint64_t)yi * t->width + xi), wt));
         }
     return acc;
 }
