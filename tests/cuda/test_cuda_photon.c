@@ -1,19 +1,19 @@
 /* The GPU photon method (src/cuda/photon_kernel.cu) on the Cornell box
  * against the same shared kernels compiled by gcc (kernel/
  * kernel_photon_map.c): the photon map (records stored, their power, the
- * same photons at the same places, cells holding their own records), the gathered
- * image (the same up to float rounding), and the image against the CPU path
- * tracer il_render (mean within the density estimate's bias, as
- * tests/unit/test_kernel_photon.c).  Exits 77 (a skip for ctest) without a
- * GPU or driver, as on CI.
+ * same photons at the same places, cells holding their own records), the
+ * gathered image (the same up to float rounding), and the image against
+ * the CPU path tracer il_render (mean within the density estimate's bias,
+ * as tests/unit/test_kernel_photon.c).  Exits 77 (a skip for ctest)
+ * without a GPU or driver, as on CI.
  *
  * The maps are compared photon by photon, not entry by entry: the GPU's
  * sinf/cosf (within 2 ulp of glibc's) move photons by rounding steps, and
  * on a wall that lies on a cell boundary (the floor y = 0, the wall
  * x = 0) those steps decide the cell; a photon in another cell moves every
- * sorted entry between the two cells' hashes.  Measured on an H200: the same 697,018
- * records, 0.5% at the same index, 62% of the used cells with as many
- * photons as the CPU's. */
+ * sorted entry between the two cells' hashes.  Measured on an H200: the
+ * same 697,018 records, 0.5% at the same index, 62% of the used cells with
+ * as many photons as the CPU's. */
 #include <stdlib.h>
 #include <string.h>
 #include "cuda_test.h"
