@@ -99,26 +99,25 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
         uint32_t n = spp - done < batch ? spp - done : batch;
         il_cuda_pixel_kernel<<<grid, block>>>(sample, width, height, done, n, sum, ray_total);
         st = il_cuda_check(cudaGetLastError(), what, err);
-        if (st == IL_OK && run) {
+        if (st == IL_OK && run)
             /* Wait for the launch: the report and the clock count finished samples. */
             st = il_cuda_check(cudaMemcpy(&rays, ray_total, sizeof rays, cudaMemcpyDeviceToHost), what, err);
-            if (st != IL_OK)
-                break;
-            done += n;
-            double s = il_cuda_seconds_since(t0);
-            il_render_progress p = {};
-            p.passes_done = done;
-            p.passes_total = run->time_limit > 0.0 ? 0 : spp;
-            p.seconds = s;
-            p.time_limit = run->time_limit;
-            p.rays = rays;
-            if (run->progress && !run->progress(&p, run->progress_user))
-                go_on = false;
-            if (run->time_limit > 0.0 && s >= run->time_limit)
-                go_on = false;
-        } else {
-            done += n;
-        }
+        if (st != IL_OK)
+            break;
+        done += n;
+        if (!run)
+            continue;
+        double s = il_cuda_seconds_since(t0);
+        il_render_progress p = {};
+        p.passes_done = done;
+        p.passes_total = run->time_limit > 0.0 ? 0 : spp;
+        p.seconds = s;
+        p.time_limit = run->time_limit;
+        p.rays = rays;
+        if (run->progress && !run->progress(&p, run->progress_user))
+            go_on = false;
+        if (run->time_limit > 0.0 && s >= run->time_limit)
+            go_on = false;
     }
     cudaEventRecord(e1);
     if (st == IL_OK) {
