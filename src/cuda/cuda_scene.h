@@ -42,6 +42,7 @@ typedef struct il_cuda_scene {
     ilk_texture *textures;
     float *texels;
     float *env_texels;             /* NULL without an environment map */
+    float *env_cdf;                /* its sampling table */
     ilk_scene view;                /* ks->view with the device pointers */
 } il_cuda_scene;
 
@@ -59,6 +60,7 @@ static inline void il_cuda_scene_free(il_cuda_scene *d)
     cudaFree(d->textures);
     cudaFree(d->texels);
     cudaFree(d->env_texels);
+    cudaFree(d->env_cdf);
     memset(d, 0, sizeof *d);
 }
 
@@ -83,7 +85,9 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
           (st = il_cuda_upload(&d->texels, ks->texels, ks->num_texels, "uploading the texels", err)) != IL_OK)) ||
         (ks->env_texels &&
          (st = il_cuda_upload(&d->env_texels, ks->env_texels, 3 * (size_t)ks->env_width * ks->env_height,
-                              "uploading the environment map", err)) != IL_OK)) {
+                              "uploading the environment map", err)) != IL_OK) ||
+        (ks->env_cdf && (st = il_cuda_upload(&d->env_cdf, ks->env_cdf, ks->num_env_cdf,
+                                             "uploading the environment's sampling table", err)) != IL_OK)) {
         il_cuda_scene_free(d);
         return st;
     }
@@ -100,6 +104,7 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.textures = d->textures;
     d->view.texels = d->texels;
     d->view.env_texels = d->env_texels;
+    d->view.env_cdf = d->env_cdf;
     return IL_OK;
 }
 

@@ -11,9 +11,15 @@
  * what they see).  Area emission is counted on camera rays and after mirror
  * or glass bounces, and otherwise by NEE, so every path is estimated once (pbrt-v4 section 13.4 without
  * MIS: unbiased, the same expectation as the CPU path tracer's NEE + MIS);
- * delta lights are reachable by NEE only and the environment by BSDF
- * sampling only (an escaping ray picks up its radiance), so neither needs
- * MIS either.  Random numbers: the CPU's Owen-scrambled Sobol sampler
+ * delta lights are reachable by NEE only.  An environment map is both: an
+ * entry of the light table (sampled by the map's importance-sampling table
+ * of image/envmap_sample.c), and what a BSDF-sampled ray that escapes
+ * picks up; the two are weighted by the power heuristic (Veach 1997,
+ * 9.2.4; pbrt-v4 13.4.2) as in the CPU path tracer.  A constant sky is
+ * found by BSDF sampling alone: the CPU's uniform directions towards it
+ * are never better than the cosine or Phong lobe, and its share of the
+ * light choice would be taken from the other lights (on the test scene of
+ * a sun and a sky the noise doubled).  Random numbers: the CPU's Owen-scrambled Sobol sampler
  * (kernel/kernel_sobol.h, the same numbers as core/sampler.c for a (seed,
  * pixel, sample, dimension)), the camera jitter in dimensions 0-1 and three
  * pairs per vertex (light choice and BSDF lobe choice, point on the light,
@@ -35,6 +41,7 @@
 #define ILK_LIGHT_POINT 1u
 #define ILK_LIGHT_SPOT 2u
 #define ILK_LIGHT_DIRECTIONAL 3u
+#define ILK_LIGHT_ENVIRONMENT 4u
 
 /* One entry of the path kernel's light table (scene/lights.c's il_light). */
 typedef struct ilk_light {
@@ -94,6 +101,15 @@ typedef struct ilk_scene {
     const float *env_texels;
     uint32_t env_width, env_height;
     float env_cos_rot, env_sin_rot;
+    /* Its importance sampling (image/envmap_sample.c's table, NULL for a
+     * constant sky: uniform directions): a piecewise-constant density over
+     * env_grid_w x env_grid_h lat-long cells, as CDFs: the rows' marginal
+     * (env_grid_h + 1 entries), then each row's conditional (env_grid_w +
+     * 1 entries each).  env_light_pmf: the environment's probability in
+     * the light table (0: not in it). */
+    const float *env_cdf;
+    uint32_t env_grid_w, env_grid_h;
+    float env_light_pmf;
     const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
     const ilk_tri_uvs *uvs;        /* per triangle; NULL when no material has a texture */
     const ilk_texture *textures;
@@ -212,6 +228,69 @@ IL_DEVICE_INLINE ilk_vec3 ilk_environment(const ilk_scene *sc, ilk_vec3 d)
     return ilk_add(ilk_scale(top, 1.0f - ty), ilk_scale(bot, ty));
 }
 
+/* The bin of a piecewise-constant density that u falls in, by its CDF
+ * (n + 1 entries): returns it, its probability in *pmf and u rescaled to
+ * [0, 1) within it in *u_in (core/sampling.c's il_distrib1d_sample_discrete). */
+IL_DEVICE_INLINE uint32_t ilk_cdf_sample(const float *cdf, uint32_t n, float u, float *pmf, float *u_in)
+{
+    uint32_t i = ilk_pick_light(cdf, n, u);
+    float w = cdf[i + 1] - cdf[i];
+    *pmf = w;
+    float r = w > 0.0f ? (u - cdf[i]) / w : 0.0f;
+    *u_in = ilk_minf(ilk_maxf(r, 0.0f), 0.99999994f);
+    return i;
+}
+
+/* A world direction towards the map for (u1, u2), with its solid-angle
+ * density (0: do not use it): a cell of the map's table by its marginal
+ * and conditional CDFs, a point uniform in (u, v) inside it, and
+ *   pdf = pmf(row) pmf(column) W H / (2 pi^2 sin theta)
+ * (pbrt-v4 12.5.2; image/envmap_sample.c's il_envmap_sample).  Only for a
+ * scene with a map (env_cdf). */
+IL_DEVICE_INLINE float ilk_environment_sample(const ilk_scene *sc, float u1, float u2, ilk_vec3 *dir)
+{
+    uint32_t W = sc->env_grid_w, H = sc->env_grid_h;
+    float pm, pc, um, uc;
+    uint32_t j = ilk_cdf_sample(sc->env_cdf, H, u2, &pm, &um);
+    uint32_t i = ilk_cdf_sample(sc->env_cdf + (H + 1) + (uint64_t)j * (W + 1), W, u1, &pc, &uc);
+    float fu = ((float)i + uc) / (float)W, fv = ((float)j + um) / (float)H;
+    /* image/envmap.h's il_envmap_latlong_dir, then the map's turn to world. */
+    float theta = ILK_PI * fv, phi = 2.0f * ILK_PI * (fu - 0.5f), st = sinf(theta);
+    ilk_vec3 l = ilk_v3(st * sinf(phi), cosf(theta), -st * cosf(phi));
+    float c = sc->env_cos_rot, s = sc->env_sin_rot;
+    *dir = ilk_v3(l.x * c + l.z * s, l.y, -l.x * s + l.z * c);
+    float p = pm * pc * (float)W * (float)H / (2.0f * ILK_PI * ILK_PI * st);
+    return st > 0.0f && p > 0.0f && p < INFINITY ? p : 0.0f;
+}
+
+/* The solid-angle density with which ilk_environment_sample picks world
+ * direction d (unit), as il_envmap_pdf.  Only for a scene with a map. */
+IL_DEVICE_INLINE float ilk_environment_pdf(const ilk_scene *sc, ilk_vec3 d)
+{
+    float c = sc->env_cos_rot, s = sc->env_sin_rot;
+    ilk_vec3 l = ilk_v3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    float st = sqrtf(l.x * l.x + l.z * l.z);
+    if (!(st > 0.0f))
+        return 0.0f;
+    float phi = atan2f(l.x, -l.z), theta = atan2f(st, l.y);
+    float u = ilk_minf(ilk_maxf(0.5f + phi * ILK_INV_2PI, 0.0f), 1.0f);
+    float v = ilk_minf(ilk_maxf(theta * ILK_INV_PI, 0.0f), 1.0f);
+    uint32_t W = sc->env_grid_w, H = sc->env_grid_h;
+    uint32_t i = (uint32_t)ilk_minf(u * (float)W, (float)(W - 1));
+    uint32_t j = (uint32_t)ilk_minf(v * (float)H, (float)(H - 1));
+    const float *row = sc->env_cdf + (H + 1) + (uint64_t)j * (W + 1);
+    float pm = sc->env_cdf[j + 1] - sc->env_cdf[j], pc = row[i + 1] - row[i];
+    return pm * pc * (float)W * (float)H / (2.0f * ILK_PI * ILK_PI * st);
+}
+
+/* The power heuristic with exponent 2 (Veach 1997, 9.2.4): the weight of
+ * a sample drawn with density a where the other strategy has density b. */
+IL_DEVICE_INLINE float ilk_power_heuristic(float a, float b)
+{
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
 /* The texture at (u, v): bilinear, wrapping, v = 0 the bottom row, as
  * scene/scene.c's il_texture_sample. */
 IL_DEVICE_INLINE ilk_vec3 ilk_texture_sample(const ilk_scene *sc, const ilk_texture *t, float u, float v)
@@ -277,7 +356,11 @@ IL_DEVICE_INLINE ilk_vec3 ilk_offset(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n
  * d^2 / (A |cos theta_l|) (pbrt-v4 equation 4.9), and for a delta light
  * (scene/lights.c, pbrt-v4 12.1-12.4) Li = I / d^2 (times the spot's
  * cos^n profile inside its cut-off) or the directional irradiance E, and
- * pdf is the choice probability.  *rays counts the shadow ray. */
+ * pdf is the choice probability.  For the environment, one direction
+ * (u1, u2) by ilk_environment_sample, Li its radiance, pdf the choice
+ * probability times the direction's density, and the result weighted by
+ * the power heuristic against the BSDF's density of that direction.
+ * *rays counts the shadow ray. */
 IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk_vec3 p, ilk_vec3 wo, float u,
                                      float u1, float u2, uint32_t *rays)
 {
@@ -294,6 +377,12 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
     if (l->kind == ILK_LIGHT_DIRECTIONAL) {
         wi = ilk_scale(l->direction, -1.0f);
         Li = l->intensity;
+        target = zero;
+    } else if (l->kind == ILK_LIGHT_ENVIRONMENT) {
+        pdf = pmf * ilk_environment_sample(sc, u1, u2, &wi);
+        if (!(pdf > 0.0f))
+            return zero;
+        Li = ilk_environment(sc, wi);
         target = zero;
     } else {
         if (l->kind == ILK_LIGHT_AREA) {
@@ -345,6 +434,11 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
     float cos_i = fabsf(ilk_dot(wi, b->ns));
     if (!(cos_i > 0.0f) || (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f))
         return zero;
+    /* What the light gives unless the shadow ray is blocked, made before
+     * the ray so that only it stays live through the traversal (fewer GPU
+     * registers). */
+    float mis = l->kind == ILK_LIGHT_ENVIRONMENT ? ilk_power_heuristic(pdf, bsdf_pdf) : 1.0f;
+    ilk_vec3 contribution = ilk_scale(ilk_mul(f, Li), mis * cos_i / pdf);
     /* The shadow ray, offset at both ends as il_shadow_ray (an area
      * light's end off its surface; a point light's is a point in space). */
     ilk_ray shadow;
@@ -361,7 +455,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
     ++*rays;
     if (ilk_bvh_occluded(&sc->bvh, &shadow))
         return zero;
-    return ilk_scale(ilk_mul(f, Li), cos_i / pdf);
+    return contribution;
 }
 
 /* The pinhole camera ray through film position (x + u, y + v), as
@@ -393,14 +487,22 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
     ilk_ray ray = ilk_camera_ray(&sc->camera, x, y, u, v);
     ilk_vec3 L = ilk_v3(0, 0, 0), beta = ilk_v3(1, 1, 1);
     /* Area emission is counted where NEE could not reach it: on camera
-     * rays and after a mirror or glass bounce. */
+     * rays and after a mirror or glass bounce.  bsdf_pdf: the density of
+     * the last bounce's direction, for the sky's MIS weight. */
     bool counts_emission = true;
+    float bsdf_pdf = 0.0f;
     for (uint32_t depth = 0;; depth++) {
         ilk_hit h;
         ++*rays;
         if (!ilk_bvh_closest(&sc->bvh, &ray, &h)) {
-            if (sc->has_environment)
-                L = ilk_add(L, ilk_mul(beta, ilk_environment(sc, ray.dir)));
+            if (sc->has_environment) {
+                /* After a non-delta bounce NEE could have picked this
+                 * direction too: the power heuristic's BSDF-side weight. */
+                float mis = 1.0f;
+                if (!counts_emission && sc->env_light_pmf > 0.0f)
+                    mis = ilk_power_heuristic(bsdf_pdf, sc->env_light_pmf * ilk_environment_pdf(sc, ray.dir));
+                L = ilk_add(L, ilk_scale(ilk_mul(beta, ilk_environment(sc, ray.dir)), mis));
+            }
             break;
         }
         const ilk_tri *tr = &sc->bvh.tris[h.tri];
@@ -434,6 +536,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             break;
         beta = ilk_mul(beta, weight);
         counts_emission = delta;
+        if (!delta && sc->env_light_pmf > 0.0f)
+            ilk_bsdf_eval(&b, wo, wi, &bsdf_pdf);
         if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
             break;
         /* Russian roulette after the third vertex, as the CPU path tracer

@@ -25,6 +25,9 @@ typedef struct il_kscene {
     ilk_texture *textures;    uint32_t num_textures;
     float *texels;            uint64_t num_texels;
     float *env_texels;        uint32_t env_width, env_height; /* NULL without an environment map */
+    float *env_cdf;           uint64_t num_env_cdf;           /* its sampling table (ilk_scene.env_cdf) */
+    uint32_t env_grid_w, env_grid_h;
+    float env_light_pmf;      /* the environment's probability in pt_light_cdf (0: none) */
     ilk_scene view;           /* host pointers into the arrays above */
 } il_kscene;
 
