@@ -105,7 +105,7 @@ static il_status build_map(const il_cuda_scene *d, uint32_t num_emitted, float r
         return il_fail(err, IL_ERR_INVALID, "photon kernel: %u photons x %u bounces is more than 2^31 records",
                        num_emitted, d->view.max_depth);
     uint32_t mask = il_kgrid_hash_mask(n);
-    float inv_cell = 1.0f / radius;
+    float cell = ilk_grid_cell_size(radius), inv_cell = 1.0f / cell;
     il_status st;
     cudaEvent_t e0, e1, e2;
     cudaEventCreate(&e0);
@@ -149,7 +149,7 @@ static il_status build_map(const il_cuda_scene *d, uint32_t num_emitted, float r
                 (st = il_cuda_check(cudaMemcpy(&count, m->count, sizeof count, cudaMemcpyDeviceToHost),
                                     "the photon kernels", err)) == IL_OK) {
                 m->num_slots = n;
-                m->grid = ilk_grid_make(m->photons, count, m->cell_start, m->cell_end, mask, radius);
+                m->grid = ilk_grid_make(m->photons, count, m->cell_start, m->cell_end, mask, cell);
                 if (stats) {
                     float ms_trace = 0.0f, ms_build = 0.0f;
                     cudaEventElapsedTime(&ms_trace, e0, e1);

@@ -15,9 +15,16 @@
  *      and keeps the photons of that very cell (hash collisions share a
  *      bucket, so each photon's own cell is checked) within the radius.
  *
- * Cells are cubes of side cell_size (at least the query radius keeps a
- * query to 27 cells); the cell hash is Teschner et al. 2003, "Optimized
- * Spatial Hashing for Collision Detection of Deformable Objects". */
+ * Cells are cubes of side cell_size, half the query radius
+ * (ilk_grid_cell_size): a query visits the 4-5 cells per axis that its
+ * bounding box touches, and on a surface reads about (2.5 r)^2 of area
+ * around its disc of pi r^2, where cells as wide as the radius (3 per
+ * axis, (3 r)^2) read 45% more photons it then rejects.  On an H200 the
+ * gather of 16 passes over the Cornell box took 0.70 s instead of 1.07
+ * (a third of the radius: 0.69 s; on the Cornell box with the dragon
+ * 0.63 s at a half against 0.68 s at a third and 0.85 s at the radius).
+ * The cell hash is Teschner et al. 2003, "Optimized Spatial Hashing for
+ * Collision Detection of Deformable Objects". */
 #ifndef IL_KERNEL_GRID_H
 #define IL_KERNEL_GRID_H
 
@@ -34,6 +41,9 @@ typedef struct ilk_grid {
     uint32_t hash_mask;            /* table size - 1, a power of two */
     float cell_size, inv_cell;
 } ilk_grid;
+
+/* The side of the cells for queries of the given radius (above). */
+IL_DEVICE_INLINE float ilk_grid_cell_size(float radius) { return 0.5f * radius; }
 
 /* The grid over count sorted photons, cells of side cell_size. */
 IL_DEVICE_INLINE ilk_grid ilk_grid_make(const ilk_photon *photons, uint32_t count, const uint32_t *cell_start,

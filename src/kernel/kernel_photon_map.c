@@ -52,7 +52,7 @@ il_status il_kphoton_map_build(const il_kscene *ks, uint32_t num_emitted, float 
         il_kphoton_map_free(out);
         return IL_ERR_MEMORY;
     }
-    float inv_cell = 1.0f / radius;
+    float cell = ilk_grid_cell_size(radius), inv_cell = 1.0f / cell;
 #pragma omp parallel for schedule(dynamic, 256)
     for (uint32_t i = 0; i < num_emitted; i++)
         ilk_photon_trace(&ks->view, i, num_emitted, &slots[(size_t)i * depth]);
@@ -72,7 +72,7 @@ il_status il_kphoton_map_build(const il_kscene *ks, uint32_t num_emitted, float 
     free(slots);
     free(kv);
     out->num_slots = n;
-    out->grid = ilk_grid_make(out->photons, stored, out->cell_start, out->cell_end, mask, radius);
+    out->grid = ilk_grid_make(out->photons, stored, out->cell_start, out->cell_end, mask, cell);
     return IL_OK;
 }
 
