@@ -278,11 +278,21 @@ int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env,
 int cli_devices_list(void);
 bool cli_device_from_name(const char *name, bool *cuda);
 int cli_device_require_cuda(void);
+/* Where a GPU render hands its running image (--write-every): write gets
+ * the mean so far after a launch that ends `every` seconds or more after
+ * the last call (every 0: never). */
+typedef struct cli_running_image {
+    double every;
+    void (*write)(const il_image *img, void *user);
+    void *user;
+} cli_running_image;
 /* Renders --method pt, photon or radiosity on the GPU into *out (freed
- * with il_image_free); IL_ERR_INVALID for what the GPU kernels do not do
- * (other methods, a time limit, scenes the GPU scene packer refuses). */
+ * with il_image_free), handing pt's and photon's running image to
+ * `running` (may be NULL); IL_ERR_INVALID for what the GPU kernels do not
+ * do (other methods, a time limit, scenes the GPU scene packer refuses). */
 il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
-                                 uint32_t height, il_image *out, il_render_stats *rs, il_error *err);
+                                 uint32_t height, const cli_running_image *running, il_image *out,
+                                 il_render_stats *rs, il_error *err);
 
 /* Every method's own options together, as render and view take them
  * (cli_method.c). */

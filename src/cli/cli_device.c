@@ -82,12 +82,35 @@ static double seconds_since(const struct timespec *t0)
     return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
 }
 
+/* il_cuda_run's image_fn: the running image handed on as an il_image. */
+static void hand_running_image(const float *rgb, uint32_t width, uint32_t height, uint32_t spp, void *user)
+{
+    (void)spp;
+    const cli_running_image *running = user;
+    il_image img = {.width = width, .height = height, .rgb = (float *)rgb};
+    running->write(&img, running->user);
+}
+
+/* What the progressive GPU renders are told: the time limit, the progress
+ * report and the running image. */
+static il_cuda_run run_for(const il_render_desc *desc, const cli_running_image *running)
+{
+    il_cuda_run run = {.time_limit = desc->time_limit, .progress = desc->progress,
+                       .progress_user = desc->progress_user};
+    if (running && running->every > 0.0) {
+        run.image_every = running->every;
+        run.image_fn = hand_running_image;
+        run.image_user = (void *)running;
+    }
+    return run;
+}
+
 /* --method photon: the shared photon kernels on the GPU with the CPU
  * method's photon count and radius (a fraction of the scene's diagonal,
  * as methods/photon/pm_settings.c resolves it); the grid with a fixed
  * radius and a uniform kernel, read at the camera's first hit. */
 static il_status render_photon(const il_scene *scene, const il_render_desc *desc, uint32_t width, uint32_t height,
-                               float *rgb, il_render_stats *rs, il_error *err)
+                               const cli_running_image *running, float *rgb, il_render_stats *rs, il_error *err)
 {
     const il_photon_desc *pd = desc->photon;
     if (pd && pd->final_gather)
@@ -102,8 +125,7 @@ static il_status render_photon(const il_scene *scene, const il_render_desc *desc
     /* A photon of d bounces leaves d + 1 records (pm_settings.c: d is
      * max_depth - 1 by default). */
     uint32_t records = pd && pd->max_photon_depth ? pd->max_photon_depth + 1 : desc->max_depth;
-    il_cuda_run run = {.time_limit = desc->time_limit, .progress = desc->progress,
-                       .progress_user = desc->progress_user};
+    il_cuda_run run = run_for(desc, running);
     il_status st = il_cuda_render_photon(scene, width, height, desc->spp, records, desc->seed, (uint32_t)photons,
                                          radius, rgb, &ps, &run, err);
     if (st != IL_OK)
@@ -193,7 +215,8 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
 #endif
 
 il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *desc, uint32_t width,
-                                 uint32_t height, il_image *out, il_render_stats *rs, il_error *err)
+                                 uint32_t height, const cli_running_image *running, il_image *out,
+                                 il_render_stats *rs, il_error *err)
 {
     memset(out, 0, sizeof *out);
     bool supported = desc->method == IL_METHOD_PT || desc->method == IL_METHOD_PHOTON ||
@@ -217,10 +240,9 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
     if (!rgb)
         return IL_ERR_MEMORY;
     if (desc->method == IL_METHOD_PHOTON) {
-        st = render_photon(scene, desc, width, height, rgb, rs, err);
+        st = render_photon(scene, desc, width, height, running, rgb, rs, err);
     } else {
-        il_cuda_run run = {.time_limit = desc->time_limit, .progress = desc->progress,
-                           .progress_user = desc->progress_user};
+        il_cuda_run run = run_for(desc, running);
         st = il_cuda_render_pt(scene, width, height, desc->spp, desc->max_depth, desc->seed, rgb, &run, err);
         rs->spp = run.spp_done;
         rs->rays = run.rays;
@@ -235,7 +257,7 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
     rs->seconds = seconds_since(&t0);
     return IL_OK;
 #else
-    (void)scene; (void)width; (void)height; (void)rs;
+    (void)scene; (void)width; (void)height; (void)running; (void)rs;
     return il_fail(err, IL_ERR_RUNTIME, "--device cuda: illum was built without CUDA");
 #endif
 }

@@ -95,8 +95,21 @@ typedef struct progress_state {
     double next_write;               /* render seconds of the next --write-every write */
 } progress_state;
 
-/* --write-every: the film is complete after every pass, so the running image
- * is written like the final one (each file atomically replaced). */
+/* --write-every: every output written like the final one (each file
+ * atomically replaced); a failure is a warning, the render goes on. */
+static void write_running_outputs(const il_image *img, void *user)
+{
+    const render_options *o = user;
+    il_error err = {0};
+    il_status st = IL_OK;
+    for (int i = 0; st == IL_OK && i < o->num_outputs; i++)
+        st = il_image_write(img, o->outputs[i], &o->write, &err);
+    if (st != IL_OK)
+        cli_error("warning: writing the running image: %s", err.message);
+}
+
+/* The film is complete after every pass, so the running image is its
+ * resolved image (a GPU render hands its own: cli_running_image). */
 static void write_running_image(progress_state *ps, const il_render_progress *p)
 {
     const render_options *o = ps->o;
@@ -106,12 +119,11 @@ static void write_running_image(progress_state *ps, const il_render_progress *p)
         ps->next_write += o->write_every;
     il_error err = {0};
     il_image img = {0};
-    il_status st = il_film_resolve(p->film, &img, &err);
-    for (int i = 0; st == IL_OK && i < o->num_outputs; i++)
-        st = il_image_write(&img, o->outputs[i], &o->write, &err);
-    il_image_free(&img);
-    if (st != IL_OK)
+    if (il_film_resolve(p->film, &img, &err) == IL_OK)
+        write_running_outputs(&img, (void *)o);
+    else
         cli_error("warning: writing the running image: %s", err.message);
+    il_image_free(&img);
 }
 
 static bool on_progress(const il_render_progress *p, void *user)
@@ -390,11 +402,6 @@ int cmd_render(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
-    if (o.cuda && o.write_every > 0.0) {
-        cli_error("--write-every works with --device cpu only (a GPU render keeps its image on the GPU "
-                  "until the end)");
-        return IL_EXIT_USAGE;
-    }
     if (o.cuda && (rc = cli_device_require_cuda()) != IL_EXIT_OK)
         return rc;
     if (cli_mpi_rank() > 0)
@@ -460,7 +467,9 @@ int cmd_render(int argc, char **argv)
 
     il_render_stats rs = {0};
     il_image cuda_img = {0};
-    il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &cuda_img, &rs, &err)
+    cli_running_image running = {.every = o.write_every, .write = write_running_outputs, .user = &o};
+    il_status st = o.cuda             ? cli_device_render_cuda(scene, &o.desc, o.width, o.height, &running,
+                                                               &cuda_img, &rs, &err)
                    : cli_mpi_active() ? cli_mpi_render(scene, film, &o.desc, &o.mpi, &rs, !o.run.quiet, &err)
                                       : il_render(scene, film, &o.desc, &rs, &err);
     cli_interrupt_release(&old_sa);

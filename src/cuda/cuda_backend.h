@@ -52,12 +52,20 @@ typedef struct il_scene il_scene;
  * per pixel at a time until spp are done, or time_limit seconds (> 0) have
  * passed since the call, or progress (may be NULL) returns false; progress
  * gets a report after every launch (its film is NULL: the image stays on
- * the GPU to the end).  The image is the mean of the spp_done samples per
- * pixel rendered, and rays counts the rays they cast. */
+ * the GPU).  image_fn (may be NULL), for --write-every, gets the running
+ * image after a launch that ends image_every seconds or more after its
+ * last call, while the render goes on: the mean so far (width x height x
+ * 3 floats, rows top to bottom) and the samples per pixel in it.  The
+ * image is the mean of the spp_done samples per pixel rendered, and rays
+ * counts the rays they cast. */
+typedef void (*il_cuda_image_fn)(const float *rgb, uint32_t width, uint32_t height, uint32_t spp, void *user);
 typedef struct il_cuda_run {
     double time_limit;
     il_progress_fn progress;
     void *progress_user;
+    double image_every;
+    il_cuda_image_fn image_fn;
+    void *image_user;
     uint32_t spp_done;             /* out */
     uint64_t rays;                 /* out */
 } il_cuda_run;

@@ -64,6 +64,23 @@ static inline double il_cuda_seconds_since(const struct timespec *t0)
     return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
 }
 
+/* The running image: the sums so far downloaded into rgb (the caller's
+ * host buffer for the final image) and divided by the samples, as the
+ * final scaling does, then handed to run->image_fn. */
+static inline il_status il_cuda_running_image(const float *sum, size_t values, uint32_t done, uint32_t width,
+                                              uint32_t height, float *rgb, const il_cuda_run *run, il_error *err)
+{
+    il_status st = il_cuda_check(cudaMemcpy(rgb, sum, sizeof(float) * values, cudaMemcpyDeviceToHost),
+                                 "downloading the running image", err);
+    if (st != IL_OK)
+        return st;
+    float k = 1.0f / (float)done;
+    for (size_t i = 0; i < values; i++)
+        rgb[i] *= k;
+    run->image_fn(rgb, width, height, done, run->image_user);
+    return IL_OK;
+}
+
 /* Renders up to `spp` samples per pixel in launches of `batch` into rgb
  * (host, 3 * width * height floats), as `run` says (may be NULL; started
  * at t0).  *seconds (may be NULL) gets the GPU time of the sampling
@@ -94,6 +111,7 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
     dim3 block(8, 8), grid((width + 7) / 8, (height + 7) / 8);
     uint32_t done = 0;
     bool go_on = true;
+    double next_image = run ? run->image_every : 0.0;
     cudaEventRecord(e0);
     while (done < spp && go_on && st == IL_OK) {
         uint32_t n = spp - done < batch ? spp - done : batch;
@@ -118,6 +136,11 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
             go_on = false;
         if (run->time_limit > 0.0 && s >= run->time_limit)
             go_on = false;
+        if (run->image_fn && run->image_every > 0.0 && go_on && done < spp && s >= next_image) {
+            while (next_image <= s)
+                next_image += run->image_every;
+            st = il_cuda_running_image(sum, values, done, width, height, rgb, run, err);
+        }
     }
     cudaEventRecord(e1);
     if (st == IL_OK) {
