@@ -43,6 +43,7 @@ typedef struct il_cuda_scene {
     float *texels;
     float *env_texels;             /* NULL without an environment map */
     float *env_cdf;                /* its sampling table */
+    float *tri_light_pmf;          /* NULL when no triangle emits */
     ilk_scene view;                /* ks->view with the device pointers */
 } il_cuda_scene;
 
@@ -61,6 +62,7 @@ static inline void il_cuda_scene_free(il_cuda_scene *d)
     cudaFree(d->texels);
     cudaFree(d->env_texels);
     cudaFree(d->env_cdf);
+    cudaFree(d->tri_light_pmf);
     memset(d, 0, sizeof *d);
 }
 
@@ -87,7 +89,9 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
          (st = il_cuda_upload(&d->env_texels, ks->env_texels, 3 * (size_t)ks->env_width * ks->env_height,
                               "uploading the environment map", err)) != IL_OK) ||
         (ks->env_cdf && (st = il_cuda_upload(&d->env_cdf, ks->env_cdf, ks->num_env_cdf,
-                                             "uploading the environment's sampling table", err)) != IL_OK)) {
+                                             "uploading the environment's sampling table", err)) != IL_OK) ||
+        (ks->tri_light_pmf && (st = il_cuda_upload(&d->tri_light_pmf, ks->tri_light_pmf, ks->bvh.num_tris,
+                                                   "uploading the emitters' light probabilities", err)) != IL_OK)) {
         il_cuda_scene_free(d);
         return st;
     }
@@ -105,6 +109,7 @@ static inline il_status il_cuda_scene_upload(const il_kscene *ks, il_cuda_scene 
     d->view.texels = d->texels;
     d->view.env_texels = d->env_texels;
     d->view.env_cdf = d->env_cdf;
+    d->view.tri_light_pmf = d->tri_light_pmf;
     return IL_OK;
 }
 

@@ -4,18 +4,18 @@
  * (kernel/kernel_bsdf.h, the CPU's scene/bsdf.c) with interpolated shading
  * normals as il_scene_surface,
  * front-face (or two-sided) area emitters, point, spot and directional
- * lights and a uniform environment.  At every vertex next-event estimation
- * picks one light of the path-tracing light table (emissive triangles and
- * the delta lights, by power, as scene/lights.c) and BSDF sampling continues
- * the path (mirror and glass vertices skip NEE: only BSDF sampling can find
- * what they see).  Area emission is counted on camera rays and after mirror
- * or glass bounces, and otherwise by NEE, so every path is estimated once (pbrt-v4 section 13.4 without
- * MIS: unbiased, the same expectation as the CPU path tracer's NEE + MIS);
- * delta lights are reachable by NEE only.  An environment map is both: an
- * entry of the light table (sampled by the map's importance-sampling table
- * of image/envmap_sample.c), and what a BSDF-sampled ray that escapes
- * picks up; the two are weighted by the power heuristic (Veach 1997,
- * 9.2.4; pbrt-v4 13.4.2) as in the CPU path tracer.  A constant sky is
+ * lights and an environment, uniform or a map.  At every vertex next-event
+ * estimation picks one light of the path-tracing light table (emissive
+ * triangles, the delta lights and an environment map, by power, as
+ * scene/lights.c) and BSDF sampling continues the path (mirror and glass
+ * vertices skip NEE: only BSDF sampling can find what they see).  Area
+ * emission and an environment map are reached both ways: by NEE, and by a
+ * BSDF-sampled ray that hits the emitter or escapes; after a non-delta
+ * bounce the two are weighted by the power heuristic (Veach 1997, 9.2.4;
+ * pbrt-v4 13.4.2) as in the CPU path tracer, on camera rays and after
+ * mirror or glass bounces the BSDF ray counts alone.  Delta lights are
+ * reachable by NEE only.  A map is sampled by its own importance-sampling
+ * table (image/envmap_sample.c); a constant sky is
  * found by BSDF sampling alone: the CPU's uniform directions towards it
  * are never better than the cosine or Phong lobe, and its share of the
  * light choice would be taken from the other lights (on the test scene of
@@ -110,6 +110,9 @@ typedef struct ilk_scene {
     const float *env_cdf;
     uint32_t env_grid_w, env_grid_h;
     float env_light_pmf;
+    /* Per triangle (of tris), its probability in the light table: 0 unless
+     * it emits (NULL: no triangle emits). */
+    const float *tri_light_pmf;
     const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
     const ilk_tri_uvs *uvs;        /* per triangle; NULL when no material has a texture */
     const ilk_texture *textures;
@@ -437,7 +440,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
     /* What the light gives unless the shadow ray is blocked, made before
      * the ray so that only it stays live through the traversal (fewer GPU
      * registers). */
-    float mis = l->kind == ILK_LIGHT_ENVIRONMENT ? ilk_power_heuristic(pdf, bsdf_pdf) : 1.0f;
+    bool mis_light = l->kind == ILK_LIGHT_ENVIRONMENT || l->kind == ILK_LIGHT_AREA;
+    float mis = mis_light ? ilk_power_heuristic(pdf, bsdf_pdf) : 1.0f;
     ilk_vec3 contribution = ilk_scale(ilk_mul(f, Li), mis * cos_i / pdf);
     /* The shadow ray, offset at both ends as il_shadow_ray (an area
      * light's end off its surface; a point light's is a point in space). */
@@ -486,9 +490,9 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
     ilk_sobol_2d(&smp, &u, &v);
     ilk_ray ray = ilk_camera_ray(&sc->camera, x, y, u, v);
     ilk_vec3 L = ilk_v3(0, 0, 0), beta = ilk_v3(1, 1, 1);
-    /* Area emission is counted where NEE could not reach it: on camera
-     * rays and after a mirror or glass bounce.  bsdf_pdf: the density of
-     * the last bounce's direction, for the sky's MIS weight. */
+    /* counts_emission: no NEE at the last vertex (camera rays, mirror or
+     * glass bounces), so what the ray finds counts whole.  bsdf_pdf: the
+     * density of the last bounce's direction, for the MIS weights. */
     bool counts_emission = true;
     float bsdf_pdf = 0.0f;
     for (uint32_t depth = 0;; depth++) {
@@ -515,8 +519,19 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         }
         ilk_surface_normals(sc, h.tri, h.b1, h.b2, &b.ng, &b.ns);
         ilk_vec3 wo = ilk_scale(ray.dir, -1.0f);
-        if (counts_emission && (ilk_dot(b.ng, wo) > 0.0f || b.m->two_sided))
-            L = ilk_add(L, ilk_mul(beta, b.m->emission));
+        if ((ilk_dot(b.ng, wo) > 0.0f || b.m->two_sided) &&
+            (b.m->emission.x > 0.0f || b.m->emission.y > 0.0f || b.m->emission.z > 0.0f)) {
+            float mis = 1.0f;
+            if (!counts_emission) {
+                /* NEE could have picked this point: its solid-angle
+                 * density pmf d^2 / (A |cos theta_l|) against the bounce's. */
+                ilk_vec3 c = ilk_cross(tr->e1, tr->e2);
+                float area = 0.5f * sqrtf(ilk_dot(c, c)), cos_l = fabsf(ilk_dot(b.ng, wo));
+                float light_pdf = sc->tri_light_pmf[h.tri] * h.t * h.t / (area * cos_l);
+                mis = ilk_power_heuristic(bsdf_pdf, light_pdf);
+            }
+            L = ilk_add(L, ilk_scale(ilk_mul(beta, b.m->emission), mis));
+        }
         if (depth >= sc->max_depth)
             break;
         ilk_vec3 p = ilk_add(ray.org, ilk_scale(ray.dir, h.t));
@@ -527,8 +542,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         if (!delta)
             L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2, rays)));
         /* The last bounce only matters when what it finds is counted: the
-         * sky, or an emitter seen through a mirror or glass. */
-        if (depth + 1 >= sc->max_depth && !sc->has_environment && !delta)
+         * sky, an emitter (MIS), or one seen through a mirror or glass. */
+        if (depth + 1 >= sc->max_depth && !sc->has_environment && !sc->tri_light_pmf && !delta)
             break;
         ilk_sobol_2d(&smp, &u1, &u2);
         ilk_vec3 wi, weight;
@@ -536,7 +551,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             break;
         beta = ilk_mul(beta, weight);
         counts_emission = delta;
-        if (!delta && sc->env_light_pmf > 0.0f)
+        if (!delta && (sc->env_light_pmf > 0.0f || sc->tri_light_pmf))
             ilk_bsdf_eval(&b, wo, wi, &bsdf_pdf);
         if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
             break;

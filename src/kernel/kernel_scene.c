@@ -271,9 +271,20 @@ static il_status pack_lights(const il_scene *scene, il_kscene *out, il_error *er
     }
     out->num_pt_lights = k;
     fill_cdf(out->pt_light_cdf, power, k);
-    for (uint32_t i = 0; i < k; i++)
+    if (n) {
+        out->tri_light_pmf = il_calloc(out->bvh.num_tris, sizeof *out->tri_light_pmf, err);
+        if (!out->tri_light_pmf) {
+            free(power);
+            return IL_ERR_MEMORY;
+        }
+    }
+    for (uint32_t i = 0; i < k; i++) {
+        float pmf = out->pt_light_cdf[i + 1] - out->pt_light_cdf[i];
         if (out->pt_lights[i].kind == ILK_LIGHT_ENVIRONMENT)
-            out->env_light_pmf = out->pt_light_cdf[i + 1] - out->pt_light_cdf[i];
+            out->env_light_pmf = pmf;
+        else if (out->pt_lights[i].kind == ILK_LIGHT_AREA)
+            out->tri_light_pmf[out->pt_lights[i].tri] = pmf;
+    }
     free(power);
     return IL_OK;
 }
@@ -332,6 +343,7 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     v->env_grid_w = out->env_grid_w;
     v->env_grid_h = out->env_grid_h;
     v->env_light_pmf = out->env_light_pmf;
+    v->tri_light_pmf = out->tri_light_pmf;
     v->epsilon = il_trace_epsilon(scene->tracer);
     v->camera.position = to_k(cam.position);
     v->camera.forward = to_k(cam.forward);
@@ -374,5 +386,6 @@ void il_kscene_free(il_kscene *ks)
     free(ks->texels);
     free(ks->env_texels);
     free(ks->env_cdf);
+    free(ks->tri_light_pmf);
     memset(ks, 0, sizeof *ks);
 }

@@ -28,6 +28,7 @@ typedef struct il_kscene {
     float *env_cdf;           uint64_t num_env_cdf;           /* its sampling table (ilk_scene.env_cdf) */
     uint32_t env_grid_w, env_grid_h;
     float env_light_pmf;      /* the environment's probability in pt_light_cdf (0: none) */
+    float *tri_light_pmf;     /* per triangle, its probability there (NULL: none emits) */
     ilk_scene view;           /* host pointers into the arrays above */
 } il_kscene;
 

@@ -147,7 +147,7 @@ static void compare(const char *scene, setup q)
 
 /* The lights of the small open scene below. */
 typedef enum test_light {
-    POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR, TEXTURED, LATLONG_MAP, ANGULAR_MAP
+    POINT_LIGHT, SPOT_LIGHT, SUN_AND_SKY, GLASS_AND_MIRROR, TEXTURED, LATLONG_MAP, ANGULAR_MAP, WIDE_PANEL
 } test_light;
 
 /* A small open scene: a glossy Phong floor, a diffuse back wall and a
@@ -157,7 +157,10 @@ typedef enum test_light {
  * delta surfaces); TEXTURED puts a checker texture on the floor (Phong)
  * and on the wall (diffuse), lit by a point light; LATLONG_MAP and
  * ANGULAR_MAP light it by an environment map alone (a bright patch in a
- * blue-to-brown gradient, turned 40 degrees about +y). */
+ * blue-to-brown gradient, turned 40 degrees about +y); WIDE_PANEL lights
+ * it by a 4 x 3 m emissive panel 1.2 m above a sharp Phong floor (exponent
+ * 300), where light sampling alone is poor and BSDF sampling finds the
+ * panel's reflection (MIS). */
 static il_scene *small_scene(test_light kind)
 {
     il_error err = {0};
@@ -178,6 +181,10 @@ static il_scene *small_scene(test_light kind)
      * down per hit (il_bsdf_init, ilk_material_at). */
     il_material_desc floor = {.name = "floor", .type = IL_MATERIAL_PHONG, .diffuse = {0.5f, 0.45f, 0.4f},
                               .specular = {0.3f, 0.3f, 0.3f}, .exponent = 20.0f, .diffuse_texture = checker};
+    if (kind == WIDE_PANEL) {
+        floor.specular = (il_vec3){0.5f, 0.5f, 0.5f};
+        floor.exponent = 300.0f;
+    }
     if (kind == TEXTURED)
         floor.diffuse = (il_vec3){1.0f, 0.9f, 0.8f};
     CHECK_OK(il_scene_add_material(s, &floor, &floor_m, &err), &err);
@@ -228,12 +235,16 @@ static il_scene *small_scene(test_light kind)
     CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = (ROWS + 1) * (COLS + 1), .num_triangles = nt,
                                                    .positions = sp, .normals = sn, .indices = si,
                                                    .material = ball_m}, &err), &err);
-    if (kind == GLASS_AND_MIRROR) {
-        /* A one-sided panel facing down over the sphere. */
+    if (kind == GLASS_AND_MIRROR || kind == WIDE_PANEL) {
+        /* A one-sided panel facing down over the sphere: small and high,
+         * or wide and low. */
         uint32_t lamp;
         CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "panel", .emission = {6, 6, 5}}, &lamp,
                                        &err), &err);
         float pp[] = {-0.6f, 2.6f, -0.4f, 0.6f, 2.6f, -0.4f, 0.6f, 2.6f, 0.6f, -0.6f, 2.6f, 0.6f};
+        float wide[] = {-2.0f, 1.2f, -1.5f, 2.0f, 1.2f, -1.5f, 2.0f, 1.2f, 1.5f, -2.0f, 1.2f, 1.5f};
+        if (kind == WIDE_PANEL)
+            memcpy(pp, wide, sizeof pp);
         CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = pp,
                                                        .indices = quad_front, .material = lamp}, &err), &err);
     }
@@ -260,6 +271,7 @@ static il_scene *small_scene(test_light kind)
     switch (kind) {
     case LATLONG_MAP:
     case ANGULAR_MAP:
+    case WIDE_PANEL:
         break;
     case TEXTURED:
     case POINT_LIGHT:
@@ -278,7 +290,7 @@ static il_scene *small_scene(test_light kind)
                  &err);
         break;
     }
-    if (kind != LATLONG_MAP && kind != ANGULAR_MAP)
+    if (kind != LATLONG_MAP && kind != ANGULAR_MAP && kind != WIDE_PANEL)
         CHECK_OK(il_scene_add_light(s, &l, &err), &err);
     /* Glass: closer, so that the sphere (and its Fresnel rim) fills the view. */
     il_camera_desc cam = {.position = {0.5f, 2.2f, 5.0f}, .target = {0, 0.7f, 0}, .fov_y = 45.0f};
@@ -380,6 +392,7 @@ int main(void)
     compare_small(TEXTURED, "textured phong + diffuse, point light", (setup){32, 32, 256, 8, 0.03, 0});
     compare_small(LATLONG_MAP, "latitude-longitude map", (setup){32, 32, 256, 8, 0.03, 1.5});
     compare_small(ANGULAR_MAP, "angular map (resampled)", (setup){32, 32, 1024, 8, 0.03, 1.5});
+    compare_small(WIDE_PANEL, "wide panel over a sharp phong floor", (setup){32, 32, 256, 8, 0.03, 3.0});
     compare("atrium", (setup){32, 24, 64, 8, 0.05, 0});
     test_refused();
     return check_report();
