@@ -83,3 +83,28 @@ expect_interrupted() {
     checks=$((checks + 1))
     [ "$got" = 130 ] || { fail "$what: exit $got, expected 130"; cat err.txt >&2; }
 }
+
+# expect_running_files WHAT FILE... -- COMMAND...: runs the command (a
+# render with --write-every) in the background and checks that every FILE
+# is on disk, non-empty, while it still runs (polled for 15 s); then stops
+# it with Ctrl-C.
+expect_running_files() {
+    what=$1; shift
+    files=()
+    while [ "$1" != -- ]; do files+=("$1"); shift; done
+    shift
+    rm -f "${files[@]}"
+    "$@" &
+    pid=$!
+    seen=0
+    for _ in $(seq 1 150); do
+        all=1
+        for f in "${files[@]}"; do [ -s "$f" ] || all=0; done
+        if [ "$all" = 1 ] && kill -0 "$pid" 2>/dev/null; then seen=1; break; fi
+        sleep 0.1
+    done
+    kill -INT "$pid" 2>/dev/null
+    wait "$pid"
+    checks=$((checks + 1))
+    [ "$seen" = 1 ] || fail "$what: no running image while rendering"
+}

@@ -45,19 +45,9 @@ if [ "$cuda" = on ] && [ "$gpu" = yes ]; then
     # --write-every: the GPU's running image is on disk while the render
     # goes on (path tracing and the photon gather).
     for m in pt photon; do
-        rm -f "running_$m.pfm" "running_$m.png"
-        "$ILLUM" render cornell --device cuda --method $m --width 64 --height 64 --time 20 --write-every 0.2 -q \
-            -o "running_$m.pfm" -o "running_$m.png" &
-        pid=$!
-        seen=0
-        for _ in $(seq 1 150); do
-            if [ -s "running_$m.pfm" ] && [ -s "running_$m.png" ] && kill -0 "$pid" 2>/dev/null; then seen=1; break; fi
-            sleep 0.1
-        done
-        kill -INT "$pid" 2>/dev/null
-        wait "$pid"
-        checks=$((checks + 1))
-        [ "$seen" = 1 ] || fail "render --device cuda --method $m --write-every: no running image while rendering"
+        expect_running_files "render --device cuda --method $m --write-every" running_$m.pfm running_$m.png -- \
+            "$ILLUM" render cornell --device cuda --method $m --width 64 --height 64 --time 20 --write-every 0.2 -q \
+            -o running_$m.pfm -o running_$m.png
     done
     expect_exit 1 "render --device cuda --method sppm" -- "$ILLUM" render cornell --device cuda --method sppm -o bad.exr
     expect_stderr "method pt, photon or radiosity" "render --device cuda --method sppm"

@@ -65,18 +65,8 @@ expect_no_file never.pfm "second Ctrl-C"
 expect_stderr "Ctrl-C again quits at once" "first Ctrl-C"
 
 # --write-every: the running image is on disk while the render goes on.
-"$ILLUM" render cornell --width 64 --height 64 --time 20 --write-every 0.2 -q \
-    -o running.pfm -o running.png &
-pid=$!
-seen=0
-for _ in $(seq 1 100); do
-    if [ -s running.pfm ] && [ -s running.png ] && kill -0 "$pid" 2>/dev/null; then seen=1; break; fi
-    sleep 0.1
-done
-kill -INT "$pid" 2>/dev/null
-wait "$pid"
-checks=$((checks + 1))
-[ "$seen" = 1 ] || fail "--write-every: no running image while rendering"
+expect_running_files "--write-every" running.pfm running.png -- \
+    "$ILLUM" render cornell --width 64 --height 64 --time 20 --write-every 0.2 -q -o running.pfm -o running.png
 expect_exit 1 "--write-every 0" -- "$ILLUM" render cornell --write-every 0 -o never.png
 expect_no_file never.png "--write-every 0"
 
