@@ -108,7 +108,8 @@ static il_cuda_run run_for(const il_render_desc *desc, const cli_running_image *
 /* --method photon: the shared photon kernels on the GPU with the CPU
  * method's photon count and radius (a fraction of the scene's diagonal,
  * as methods/photon/pm_settings.c resolves it); the grid with a fixed
- * radius and a uniform kernel, read at the camera's first hit. */
+ * radius and a uniform kernel, read at the camera's first hit for the
+ * indirect light; direct light by a shadow ray there. */
 static il_status render_photon(const il_scene *scene, const il_render_desc *desc, uint32_t width, uint32_t height,
                                const cli_running_image *running, float *rgb, il_render_stats *rs, il_error *err)
 {

@@ -47,7 +47,7 @@ __global__ static void photon_reorder_kernel(const ilk_photon *slots, const uint
         return;
     photons[i] = slots[values[i]];
     ilk_grid_mark(sorted_keys, n, i, cell_start, cell_end);
-    /* The first empty slot (or n) is the stored count. */
+    /* The first slot without a key (empty, or a first hit) is the count. */
     if (sorted_keys[i] != ILK_GRID_NO_KEY && (i + 1 == n || sorted_keys[i + 1] == ILK_GRID_NO_KEY))
         *count = i + 1;
 }
@@ -59,8 +59,7 @@ struct photon_sampler {
     float radius;
     __device__ ilk_vec3 operator()(uint32_t x, uint32_t y, uint32_t s, uint32_t *rays) const
     {
-        ++*rays; /* the camera ray */
-        return ilk_photon_pixel_sample(&sc, &g, radius, x, y, s);
+        return ilk_photon_pixel_sample(&sc, &g, radius, x, y, s, rays);
     }
 };
 

@@ -76,10 +76,13 @@ IL_DEVICE_INLINE uint32_t ilk_grid_hash(ilk_cell c, uint32_t hash_mask)
     return (((uint32_t)c.x * 73856093u) ^ ((uint32_t)c.y * 19349663u) ^ ((uint32_t)c.z * 83492791u)) & hash_mask;
 }
 
-/* Step 1 for one slot. */
+/* Step 1 for one slot.  A photon's first hit (bounces 0, direct light)
+ * stays out of the grid, sorted after its records with the empty slots:
+ * the gather takes direct light by a shadow ray instead
+ * (kernel_photon_gather.h), as the CPU photon method does. */
 IL_DEVICE_INLINE uint32_t ilk_grid_key(const ilk_photon *ph, float inv_cell, uint32_t hash_mask)
 {
-    if (ph->bounces == ILK_PHOTON_EMPTY)
+    if (ph->bounces == ILK_PHOTON_EMPTY || ph->bounces == 0)
         return ILK_GRID_NO_KEY;
     return ilk_grid_hash(ilk_grid_cell(inv_cell, ph->p), hash_mask);
 }

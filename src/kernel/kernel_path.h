@@ -361,11 +361,13 @@ IL_DEVICE_INLINE ilk_vec3 ilk_offset(const ilk_scene *sc, ilk_vec3 p, ilk_vec3 n
  * cos^n profile inside its cut-off) or the directional irradiance E, and
  * pdf is the choice probability.  For the environment, one direction
  * (u1, u2) by ilk_environment_sample, Li its radiance, pdf the choice
- * probability times the direction's density, and the result weighted by
- * the power heuristic against the BSDF's density of that direction.
+ * probability times the direction's density.  With `mis` (the path
+ * kernel, whose BSDF-sampled rays find area lights and the environment
+ * too) those two are weighted by the power heuristic against the BSDF's
+ * density of the direction; without (the photon gather) they count whole.
  * *rays counts the shadow ray. */
 IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk_vec3 p, ilk_vec3 wo, float u,
-                                     float u1, float u2, uint32_t *rays)
+                                     float u1, float u2, bool mis, uint32_t *rays)
 {
     ilk_vec3 zero = ilk_v3(0, 0, 0);
     if (sc->num_pt_lights == 0)
@@ -440,9 +442,9 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
     /* What the light gives unless the shadow ray is blocked, made before
      * the ray so that only it stays live through the traversal (fewer GPU
      * registers). */
-    bool mis_light = l->kind == ILK_LIGHT_ENVIRONMENT || l->kind == ILK_LIGHT_AREA;
-    float mis = mis_light ? ilk_power_heuristic(pdf, bsdf_pdf) : 1.0f;
-    ilk_vec3 contribution = ilk_scale(ilk_mul(f, Li), mis * cos_i / pdf);
+    bool weighted = mis && (l->kind == ILK_LIGHT_ENVIRONMENT || l->kind == ILK_LIGHT_AREA);
+    float w = weighted ? ilk_power_heuristic(pdf, bsdf_pdf) : 1.0f;
+    ilk_vec3 contribution = ilk_scale(ilk_mul(f, Li), w * cos_i / pdf);
     /* The shadow ray, offset at both ends as il_shadow_ray (an area
      * light's end off its surface; a point light's is a point in space). */
     ilk_ray shadow;
@@ -540,7 +542,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
         ilk_sobol_2d(&smp, &ul, &u_lobe);
         ilk_sobol_2d(&smp, &u1, &u2);
         if (!delta)
-            L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2, rays)));
+            L = ilk_add(L, ilk_mul(beta, ilk_direct(sc, &b, p, wo, ul, u1, u2, true, rays)));
         /* The last bounce only matters when what it finds is counted: the
          * sky, an emitter (MIS), or one seen through a mirror or glass. */
         if (depth + 1 >= sc->max_depth && !sc->has_environment && !sc->tri_light_pmf && !delta)

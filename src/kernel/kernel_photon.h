@@ -2,8 +2,9 @@
  * photon_kernel.cu, one thread per photon): emission from the emissive
  * triangles of kernel/kernel_scene.h (chosen by power, a uniform point,
  * a cosine-distributed direction), diffuse bounces with Russian roulette,
- * and a record at every diffuse hit (Jensen 2001, chapter 5: the global map,
- * direct hits included, read at the camera's first hit).
+ * and a record at every diffuse hit (Jensen 2001, chapter 5: the global
+ * map; the first hits, direct light, are recorded but left out of the
+ * grid, kernel_grid.h, since the gather takes direct light by a shadow ray).
  *
  * Every photon owns max_depth consecutive record slots (photon i writes
  * slots[i * max_depth ..]); the unused ones are marked empty.  No atomics:

@@ -1,9 +1,12 @@
 /* The per-pixel gather of the photon method, shared by the CPU (gcc) and
  * the GPU (src/cuda/photon_kernel.cu, one thread per pixel): a camera ray
  * (the same jittered pinhole ray and Sobol sample as kernel_path.h), its
- * first hit's emission, and the density estimate of the reflected radiance
- * there from the photons of kernel/kernel_grid.h within the radius
- * (Jensen 2001, equation 7.6, with a uniform disc kernel):
+ * first hit's emission, its direct light by next-event estimation (one
+ * emitter by power, a point on it, a shadow ray: kernel_path.h's
+ * ilk_direct, as the CPU photon method takes direct light), and the
+ * density estimate of the indirect light reflected there from the photons
+ * of kernel/kernel_grid.h within the radius (records after a photon's
+ * first bounce; Jensen 2001, equation 7.6, with a uniform disc kernel):
  *
  *     L_r(x) = sum_p f_r Phi_p / (pi r^2),   f_r = rho / pi  (Lambertian),
  *
@@ -32,15 +35,17 @@ IL_DEVICE_INLINE ilk_vec3 ilk_photon_estimate(const ilk_grid *g, ilk_vec3 p, ilk
     return ilk_scale(ilk_mul(sum, rho), k);
 }
 
-/* The radiance of one camera sample through pixel (x, y). */
+/* The radiance of one camera sample through pixel (x, y); the rays it
+ * casts are added to *rays. */
 IL_DEVICE_INLINE ilk_vec3 ilk_photon_pixel_sample(const ilk_scene *sc, const ilk_grid *g, float radius, uint32_t x,
-                                                  uint32_t y, uint32_t sample)
+                                                  uint32_t y, uint32_t sample, uint32_t *rays)
 {
     ilk_sobol smp = ilk_sobol_start(sc->seed, (uint64_t)y * sc->width + x, sample);
     float u, v;
     ilk_sobol_2d(&smp, &u, &v);
     ilk_ray ray = ilk_camera_ray(&sc->camera, x, y, u, v);
     ilk_hit h;
+    ++*rays;
     if (!ilk_bvh_closest(&sc->bvh, &ray, &h))
         return ilk_v3(0, 0, 0);
     const ilk_tri *tr = &sc->bvh.tris[h.tri];
@@ -52,6 +57,14 @@ IL_DEVICE_INLINE ilk_vec3 ilk_photon_pixel_sample(const ilk_scene *sc, const ilk
         L = m->emission;
     ilk_vec3 n = side < 0.0f ? ng : ilk_scale(ng, -1.0f);
     ilk_vec3 p = ilk_add(ray.org, ilk_scale(ray.dir, h.t));
+    ilk_bsdf b;
+    b.m = m;
+    b.ng = n;
+    b.ns = n;
+    float ul, unused, u1, u2;
+    ilk_sobol_2d(&smp, &ul, &unused);
+    ilk_sobol_2d(&smp, &u1, &u2);
+    L = ilk_add(L, ilk_direct(sc, &b, p, ilk_scale(ray.dir, -1.0f), ul, u1, u2, false, rays));
     return ilk_add(L, ilk_photon_estimate(g, p, n, m->diffuse, radius));
 }
 

@@ -85,16 +85,19 @@ void il_kphoton_map_free(il_kphoton_map *map)
     memset(map, 0, sizeof *map);
 }
 
-void il_kphoton_render(const il_kscene *ks, const il_kphoton_map *map, float radius, uint32_t spp, float *rgb)
+uint64_t il_kphoton_render(const il_kscene *ks, const il_kphoton_map *map, float radius, uint32_t spp, float *rgb)
 {
     const ilk_scene *sc = &ks->view;
     uint32_t n = spp ? spp : 1;
-#pragma omp parallel for schedule(dynamic, 4)
+    uint64_t total = 0;
+#pragma omp parallel for schedule(dynamic, 4) reduction(+ : total)
     for (uint32_t y = 0; y < sc->height; y++)
         for (uint32_t x = 0; x < sc->width; x++) {
             double acc[3] = {0, 0, 0};
             for (uint32_t s = 0; s < n; s++) {
-                ilk_vec3 L = ilk_photon_pixel_sample(sc, &map->grid, radius, x, y, s);
+                uint32_t rays = 0;
+                ilk_vec3 L = ilk_photon_pixel_sample(sc, &map->grid, radius, x, y, s, &rays);
+                total += rays;
                 acc[0] += L.x;
                 acc[1] += L.y;
                 acc[2] += L.z;
@@ -103,4 +106,5 @@ void il_kphoton_render(const il_kscene *ks, const il_kphoton_map *map, float rad
             for (int c = 0; c < 3; c++)
                 o[c] = (float)(acc[c] / n);
         }
+    return total;
 }

@@ -35,8 +35,9 @@ il_status il_kphoton_map_build(const il_kscene *ks, uint32_t num_emitted, float 
 void il_kphoton_map_free(il_kphoton_map *map);
 
 /* The gather into rgb (width x height x 3 floats of ks->view, rows top to
- * bottom): spp jittered camera samples per pixel, averaged. */
-void il_kphoton_render(const il_kscene *ks, const il_kphoton_map *map, float radius, uint32_t spp, float *rgb);
+ * bottom): spp jittered camera samples per pixel, averaged.  Returns the
+ * rays cast (camera and shadow rays). */
+uint64_t il_kphoton_render(const il_kscene *ks, const il_kphoton_map *map, float radius, uint32_t spp, float *rgb);
 
 #ifdef __cplusplus
 }

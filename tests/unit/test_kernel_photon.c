@@ -1,7 +1,8 @@
 /* The shared photon kernels (src/kernel/kernel_photon.h, kernel_grid.h,
  * kernel_photon_gather.h), compiled here by gcc exactly as nvcc compiles
  * them for src/cuda/photon_kernel.cu, on the Cornell box:
- *  - the emitted power: the first-hit records carry the lights' power;
+ *  - the emitted power: the first-hit records carry the lights' power
+ *    (they stay out of the grid: the gather takes direct light by NEE);
  *  - the grid's range query finds exactly the photons a brute-force scan
  *    finds (also with a 16-bucket table, where most cells collide);
  *  - the gather (density estimate at the camera's first hit) against the
@@ -36,7 +37,7 @@ static void test_power(const il_kscene *ks, const il_kphoton_map *map, uint32_t 
         want[2] += ILK_PI * a * m->emission.z;
     }
     uint32_t first = 0;
-    for (uint32_t i = 0; i < map->grid.count; i++)
+    for (uint64_t i = 0; i < map->num_slots; i++)
         if (map->photons[i].bounces == 0) {
             got[0] += map->photons[i].power.x;
             got[1] += map->photons[i].power.y;
@@ -50,10 +51,13 @@ static void test_power(const il_kscene *ks, const il_kphoton_map *map, uint32_t 
         CHECK(want[c] > 0.0);
         CHECK_REL(got[c], want[c] * first / emitted, 1e-3);
     }
-    /* Stored records are sorted before the empty slots. */
+    /* The grid's records (after a first bounce) are sorted before the
+     * first hits (direct light, not in the grid) and the empty slots. */
     uint64_t misplaced = 0;
-    for (uint32_t i = 0; i < map->num_slots; i++)
-        misplaced += (i < map->grid.count) != (map->photons[i].bounces != ILK_PHOTON_EMPTY);
+    for (uint64_t i = 0; i < map->num_slots; i++) {
+        uint32_t b = map->photons[i].bounces;
+        misplaced += (i < map->grid.count) != (b != ILK_PHOTON_EMPTY && b != 0);
+    }
     CHECK(misplaced == 0);
 }
 
@@ -142,7 +146,9 @@ static void test_collisions(const il_kphoton_map *map)
  * and 8x8-pixel blocks.  The density estimate is biased (blurred over the
  * radius, dimmed within a radius of the box's edges, where the disc reaches
  * past the surface), so the tolerances are the bias plus noise measured on
- * this setup, not standard errors. */
+ * this setup, not standard errors: means -0.6 to -0.9% and the worst block
+ * 8.2% off since direct light is taken by shadow rays (2026-11-28; with
+ * first-hit photons in the estimate -1.3 to -1.5% and 15.3%). */
 static void test_gather(const il_scene *s, const il_kscene *ks, const il_kphoton_map *map, float radius)
 {
     float *k = calloc(3 * W * H, sizeof *k);
@@ -188,9 +194,9 @@ static void test_gather(const il_scene *s, const il_kscene *ks, const il_kphoton
            100 * worst);
     for (int c = 0; c < 3; c++) {
         CHECK(mc[c] > 0.01);
-        CHECK_REL(mk[c], mc[c], 0.05);
+        CHECK_REL(mk[c], mc[c], 0.03);
     }
-    CHECK(worst < 0.25);
+    CHECK(worst < 0.15);
     il_image_free(&img);
     il_film_release(film);
     free(k);
