@@ -101,8 +101,8 @@ typedef struct ilk_scene {
     const float *env_texels;
     uint32_t env_width, env_height;
     float env_cos_rot, env_sin_rot;
-    /* Its importance sampling (image/envmap_sample.c's table, NULL for a
-     * constant sky: uniform directions): a piecewise-constant density over
+    /* Its importance sampling (image/envmap_sample.c's table; NULL
+     * without a map): a piecewise-constant density over
      * env_grid_w x env_grid_h lat-long cells, as CDFs: the rows' marginal
      * (env_grid_h + 1 entries), then each row's conditional (env_grid_w +
      * 1 entries each).  env_light_pmf: the environment's probability in
