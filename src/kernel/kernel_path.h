@@ -193,10 +193,32 @@ IL_DEVICE_INLINE void ilk_surface_normals(const ilk_scene *sc, uint32_t tri, flo
     }
 }
 
+/* The area of triangle t. */
+IL_DEVICE_INLINE float ilk_tri_area(const ilk_tri *t)
+{
+    ilk_vec3 c = ilk_cross(t->e1, t->e2);
+    return 0.5f * sqrtf(ilk_dot(c, c));
+}
+
 /* Texel i of an array of RGB floats. */
 IL_DEVICE_INLINE ilk_vec3 ilk_texel(const float *t, uint64_t i)
 {
     return ilk_v3(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+}
+
+/* World direction d in the map's own frame (its turn about +y undone, as
+ * image/envmap.h's il_envmap_to_local), returned, and there its
+ * latitude-longitude coordinates (u, v) in [0, 1] (il_envmap_dir_to_uv);
+ * *st = |d| sin theta. */
+IL_DEVICE_INLINE ilk_vec3 ilk_environment_uv(const ilk_scene *sc, ilk_vec3 d, float *u, float *v, float *st)
+{
+    float c = sc->env_cos_rot, s = sc->env_sin_rot;
+    ilk_vec3 l = ilk_v3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    *st = sqrtf(l.x * l.x + l.z * l.z);
+    float theta = atan2f(*st, l.y), phi = atan2f(l.x, -l.z);
+    *u = ilk_minf(ilk_maxf(0.5f + phi * ILK_INV_2PI, 0.0f), 1.0f);
+    *v = ilk_minf(ilk_maxf(theta * ILK_INV_PI, 0.0f), 1.0f);
+    return l;
 }
 
 /* The radiance arriving from world direction d: the uniform sky, or the
@@ -206,14 +228,11 @@ IL_DEVICE_INLINE ilk_vec3 ilk_environment(const ilk_scene *sc, ilk_vec3 d)
 {
     if (!sc->env_texels)
         return sc->environment;
-    float c = sc->env_cos_rot, s = sc->env_sin_rot;
-    ilk_vec3 l = ilk_v3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    float u, v, st;
+    ilk_vec3 l = ilk_environment_uv(sc, d, &u, &v, &st);
     if (!(fabsf(l.x) < INFINITY && fabsf(l.y) < INFINITY && fabsf(l.z) < INFINITY) ||
         (l.x == 0.0f && l.y == 0.0f && l.z == 0.0f))
         return ilk_v3(0, 0, 0);
-    float theta = atan2f(sqrtf(l.x * l.x + l.z * l.z), l.y), phi = atan2f(l.x, -l.z);
-    float u = ilk_minf(ilk_maxf(0.5f + phi * ILK_INV_2PI, 0.0f), 1.0f);
-    float v = ilk_minf(ilk_maxf(theta * ILK_INV_PI, 0.0f), 1.0f);
     uint32_t w = sc->env_width, h = sc->env_height;
     float x = u * (float)w - 0.5f, fx = floorf(x), tx = x - fx;
     long k = (long)fx % (long)w;
@@ -244,6 +263,12 @@ IL_DEVICE_INLINE uint32_t ilk_cdf_sample(const float *cdf, uint32_t n, float u, 
     return i;
 }
 
+/* Row j's conditional CDF in the map's sampling table (env_cdf). */
+IL_DEVICE_INLINE const float *ilk_environment_row_cdf(const ilk_scene *sc, uint32_t j)
+{
+    return sc->env_cdf + (sc->env_grid_h + 1) + (uint64_t)j * (sc->env_grid_w + 1);
+}
+
 /* A world direction towards the map for (u1, u2), with its solid-angle
  * density (0: do not use it): a cell of the map's table by its marginal
  * and conditional CDFs, a point uniform in (u, v) inside it, and
@@ -255,7 +280,7 @@ IL_DEVICE_INLINE float ilk_environment_sample(const ilk_scene *sc, float u1, flo
     uint32_t W = sc->env_grid_w, H = sc->env_grid_h;
     float pm, pc, um, uc;
     uint32_t j = ilk_cdf_sample(sc->env_cdf, H, u2, &pm, &um);
-    uint32_t i = ilk_cdf_sample(sc->env_cdf + (H + 1) + (uint64_t)j * (W + 1), W, u1, &pc, &uc);
+    uint32_t i = ilk_cdf_sample(ilk_environment_row_cdf(sc, j), W, u1, &pc, &uc);
     float fu = ((float)i + uc) / (float)W, fv = ((float)j + um) / (float)H;
     /* image/envmap.h's il_envmap_latlong_dir, then the map's turn to world. */
     float theta = ILK_PI * fv, phi = 2.0f * ILK_PI * (fu - 0.5f), st = sinf(theta);
@@ -270,18 +295,14 @@ IL_DEVICE_INLINE float ilk_environment_sample(const ilk_scene *sc, float u1, flo
  * direction d (unit), as il_envmap_pdf.  Only for a scene with a map. */
 IL_DEVICE_INLINE float ilk_environment_pdf(const ilk_scene *sc, ilk_vec3 d)
 {
-    float c = sc->env_cos_rot, s = sc->env_sin_rot;
-    ilk_vec3 l = ilk_v3(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
-    float st = sqrtf(l.x * l.x + l.z * l.z);
+    float u, v, st;
+    ilk_environment_uv(sc, d, &u, &v, &st);
     if (!(st > 0.0f))
         return 0.0f;
-    float phi = atan2f(l.x, -l.z), theta = atan2f(st, l.y);
-    float u = ilk_minf(ilk_maxf(0.5f + phi * ILK_INV_2PI, 0.0f), 1.0f);
-    float v = ilk_minf(ilk_maxf(theta * ILK_INV_PI, 0.0f), 1.0f);
     uint32_t W = sc->env_grid_w, H = sc->env_grid_h;
     uint32_t i = (uint32_t)ilk_minf(u * (float)W, (float)(W - 1));
     uint32_t j = (uint32_t)ilk_minf(v * (float)H, (float)(H - 1));
-    const float *row = sc->env_cdf + (H + 1) + (uint64_t)j * (W + 1);
+    const float *row = ilk_environment_row_cdf(sc, j);
     float pm = sc->env_cdf[j + 1] - sc->env_cdf[j], pc = row[i + 1] - row[i];
     return pm * pc * (float)W * (float)H / (2.0f * ILK_PI * ILK_PI * st);
 }
@@ -408,8 +429,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
         if (l->kind == ILK_LIGHT_AREA) {
             const ilk_tri *lt = &sc->bvh.tris[l->tri];
             const ilk_material *lm = &sc->materials[lt->pad];
-            ilk_vec3 c = ilk_cross(lt->e1, lt->e2);
-            float area = 0.5f * sqrtf(ilk_dot(c, c)), cos_l = ilk_dot(target_n, wi);
+            float area = ilk_tri_area(lt), cos_l = ilk_dot(target_n, wi);
             if (!lm->two_sided && !(cos_l < 0.0f))
                 return zero;                   /* the back of a one-sided emitter */
             cos_l = fabsf(cos_l);
@@ -527,8 +547,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             if (!counts_emission) {
                 /* NEE could have picked this point: its solid-angle
                  * density pmf d^2 / (A |cos theta_l|) against the bounce's. */
-                ilk_vec3 c = ilk_cross(tr->e1, tr->e2);
-                float area = 0.5f * sqrtf(ilk_dot(c, c)), cos_l = fabsf(ilk_dot(b.ng, wo));
+                float area = ilk_tri_area(tr), cos_l = fabsf(ilk_dot(b.ng, wo));
                 float light_pdf = sc->tri_light_pmf[h.tri] * h.t * h.t / (area * cos_l);
                 mis = ilk_power_heuristic(bsdf_pdf, light_pdf);
             }
