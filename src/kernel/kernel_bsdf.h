@@ -193,11 +193,14 @@ IL_DEVICE_INLINE bool ilk_dielectric_sample(const ilk_bsdf *b, ilk_vec3 wo, floa
 /* Draws wi (il_bsdf_sample_dir): glass as above; a mirror reflects about
  * the shading normal (weight: the tint); Phong samples its lobe when
  * u_lobe >= the diffuse probability, else (and diffuse) the cosine lobe;
- * *weight = f cos / pdf.  False when the sample carries no energy. */
+ * *weight = f cos / pdf and *pdf the density of wi (what ilk_bsdf_eval
+ * gives for it; 0 for the delta BSDFs).  False when the sample carries no
+ * energy. */
 IL_DEVICE_INLINE bool ilk_bsdf_sample(const ilk_bsdf *b, ilk_vec3 wo, float u_lobe, float u1, float u2, ilk_vec3 *wi,
-                                      ilk_vec3 *weight)
+                                      ilk_vec3 *weight, float *pdf)
 {
     const ilk_material *m = b->m;
+    *pdf = 0.0f;
     if (m->type == ILK_MATERIAL_DIELECTRIC)
         return ilk_dielectric_sample(b, wo, u_lobe, wi, weight);
     ilk_vec3 n;
@@ -218,11 +221,10 @@ IL_DEVICE_INLINE bool ilk_bsdf_sample(const ilk_bsdf *b, ilk_vec3 wo, float u_lo
     float cos_i = ilk_dot(*wi, n);
     if (cos_i <= ILK_BSDF_EPS)
         return false;   /* the lobe dipped below the horizon */
-    float pdf;
-    ilk_vec3 f = ilk_bsdf_eval_side(b, n, cos_o, wo, *wi, &pdf);
-    if (!(pdf > 0.0f) || !(ilk_dot(wo, b->ng) * ilk_dot(*wi, b->ng) > 0.0f))
+    ilk_vec3 f = ilk_bsdf_eval_side(b, n, cos_o, wo, *wi, pdf);
+    if (!(*pdf > 0.0f) || !(ilk_dot(wo, b->ng) * ilk_dot(*wi, b->ng) > 0.0f))
         return false;
-    *weight = ilk_scale(f, cos_i / pdf);
+    *weight = ilk_scale(f, cos_i / *pdf);
     return weight->x > 0.0f || weight->y > 0.0f || weight->z > 0.0f;
 }
 

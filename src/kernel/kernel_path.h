@@ -568,12 +568,10 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             break;
         ilk_sobol_2d(&smp, &u1, &u2);
         ilk_vec3 wi, weight;
-        if (!ilk_bsdf_sample(&b, wo, u_lobe, u1, u2, &wi, &weight) || !ilk_sides_agree(&b, wo, wi))
+        if (!ilk_bsdf_sample(&b, wo, u_lobe, u1, u2, &wi, &weight, &bsdf_pdf) || !ilk_sides_agree(&b, wo, wi))
             break;
         beta = ilk_mul(beta, weight);
         counts_emission = delta;
-        if (!delta && (sc->env_light_pmf > 0.0f || sc->tri_light_pmf))
-            ilk_bsdf_eval(&b, wo, wi, &bsdf_pdf);
         if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
             break;
         /* Russian roulette after the third vertex, as the CPU path tracer
