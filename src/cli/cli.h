@@ -51,6 +51,10 @@ int cli_exit_for(il_status st);
 /* Writes text to path through a temporary file and a rename. */
 bool cli_write_text_atomic(const char *path, const char *text);
 
+/* Before a command spends time: each non-NULL path of `paths` can be written
+ * (il_atomic_check).  Prints the first problem and returns its exit status. */
+int cli_check_outputs(const char *const *paths, int n);
+
 /* Loads SCENE (file or built-in name) and commits it, printing errors. */
 int cli_load_scene(const char *path, bool quiet, il_scene **out);
 

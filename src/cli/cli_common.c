@@ -149,6 +149,18 @@ bool cli_write_text_atomic(const char *path, const char *text)
     return st == IL_OK;
 }
 
+int cli_check_outputs(const char *const *paths, int n)
+{
+    for (int i = 0; i < n; i++) {
+        il_error err = {0};
+        if (paths[i] && il_atomic_check(paths[i], &err) != IL_OK) {
+            cli_error("%s", err.message);
+            return cli_exit_for(err.status);
+        }
+    }
+    return IL_EXIT_OK;
+}
+
 int cli_load_scene(const char *path, bool quiet, il_scene **out)
 {
     return cli_load_scene_env(path, quiet, NULL, out);

@@ -172,6 +172,9 @@ int cmd_bake(int argc, char **argv)
     if (rc != IL_EXIT_OK)
         return rc;
 
+    const char *files[] = {o.output, o.stats};
+    if ((rc = cli_check_outputs(files, 2)) != IL_EXIT_OK)
+        return rc;
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;

@@ -52,6 +52,9 @@ int cmd_compare(int argc, char **argv)
         cli_error("compare: needs two images A and B (see 'illum compare --help')");
         return IL_EXIT_USAGE;
     }
+    int rc = cli_check_outputs(&diff_path, 1);
+    if (rc != IL_EXIT_OK)
+        return rc;
     il_error err = {0};
     il_image a = {0}, b = {0}, diff = {0};
     il_compare_result r;

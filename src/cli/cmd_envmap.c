@@ -92,6 +92,9 @@ int cmd_envmap(int argc, char **argv)
         cli_error("envmap convert: --to latlong|angular|cross is required");
         return IL_EXIT_USAGE;
     }
+    int rc = cli_check_outputs(&out, 1);
+    if (rc != IL_EXIT_OK)
+        return rc;
 
     il_error err = {0};
     il_image src = {0}, dst = {0};

@@ -419,6 +419,13 @@ int cmd_render(int argc, char **argv)
     }
     o.mpi.output = o.outputs[0];
     o.mpi.write_every = o.write_every;
+    if (cli_mpi_rank() == 0) {
+        /* A folder that is missing or read-only is found now, not after the render. */
+        const char *files[MAX_OUTPUTS + 2] = {o.stats, o.mpi.checkpoint};
+        memcpy(files + 2, o.outputs, (size_t)o.num_outputs * sizeof *files);
+        if ((rc = cli_check_outputs(files, o.num_outputs + 2)) != IL_EXIT_OK)
+            return rc;
+    }
 
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)

@@ -86,6 +86,8 @@ int cmd_tonemap(int argc, char **argv)
                   "radiance: see 'illum render -o')", out_path);
         return IL_EXIT_BAD_INPUT;
     }
+    if ((rc = cli_check_outputs(&out_path, 1)) != IL_EXIT_OK)
+        return rc;
 
     il_error err = {0};
     il_image img = {0};

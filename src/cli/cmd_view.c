@@ -160,6 +160,9 @@ int cmd_view(int argc, char **argv)
               "it needs GLFW 3 and libepoxy, see docs/viewer.md)");
     return IL_EXIT_RUNTIME;
 #else
+    const char *files[] = {o.screenshot, o.look_screenshot};
+    if ((rc = cli_check_outputs(files, 2)) != IL_EXIT_OK)
+        return rc;
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;

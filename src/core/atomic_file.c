@@ -64,3 +64,19 @@ il_status il_atomic_close(il_atomic_file *af, il_status st, il_error *err)
     af->f = NULL;
     return st;
 }
+
+il_status il_atomic_check(const char *path, il_error *err)
+{
+    if (!path[0])
+        return il_fail(err, IL_ERR_IO, "an output file name is empty");
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return il_fail(err, IL_ERR_IO, "%s: is a folder, not a file", path);
+    il_atomic_file af;
+    il_status st = il_atomic_open(&af, path, err);
+    if (st != IL_OK)
+        return st;
+    il_error ignored = {0};
+    il_atomic_close(&af, IL_ERR_IO, &ignored); /* removes the temporary file */
+    return IL_OK;
+}

@@ -21,4 +21,9 @@ il_status il_atomic_open(il_atomic_file *af, const char *path, il_error *err);
  * removes the temporary file.  Returns the final status. */
 il_status il_atomic_close(il_atomic_file *af, il_status status, il_error *err);
 
+/* Checks, before any work is spent on its content, that `path` can be written
+ * the way il_atomic_open and il_atomic_close will: not empty, not a folder,
+ * and a temporary file can be created beside it (it is removed at once). */
+il_status il_atomic_check(const char *path, il_error *err);
+
 #endif

@@ -115,6 +115,23 @@ expect_no_file far.png "coordinates beyond 1e15"
 expect_exit 1 "output into a missing folder" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o no/such/dir/i.png
 expect_no_file no/such/dir/i.png "missing folder"
 
+# Every output is checked before the work starts: a render of 10^6 seconds
+# ends at once, and no image is written when only the stats file cannot be.
+expect_exit 1 "output checked before the render" -- "$ILLUM" render cornell --time 1000000 -o no/such/dir/i.exr
+expect_stderr "no/such/dir/i.exr: cannot create file" "output checked before the render"
+expect_exit 1 "stats into a missing folder" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o j.png --stats no/such/dir/s.json
+expect_stderr "no/such/dir/s.json" "stats into a missing folder"
+expect_no_file j.png "stats into a missing folder"
+mkdir -p folder.exr
+expect_exit 1 "output is a folder" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o folder.exr
+expect_stderr "folder.exr: is a folder" "output is a folder"
+expect_exit 1 "empty output name" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o j.png --stats ''
+expect_stderr "empty" "empty output name"
+expect_no_file j.png "empty output name"
+expect_exit 1 "bake stats into a missing folder" -- "$ILLUM" bake cornell -o k.ply --stats no/such/dir/s.json
+expect_no_file k.ply "bake stats into a missing folder"
+if ls -a | grep -q '\.tmp-'; then fail "an output check left a temporary file"; fi
+
 # Corrupt images given to compare.
 printf 'not an image' > bad.png
 printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100 +X 100\n\x02\x02' > bad.hdr
@@ -125,5 +142,11 @@ expect_exit 1 "truncated HDR" -- "$ILLUM" compare bad.hdr bad.hdr
 expect_exit 1 "corrupt EXR" -- "$ILLUM" compare bad.exr bad.exr
 expect_exit 1 "missing image" -- "$ILLUM" compare none.exr none.exr
 expect_exit 2 "compare with one image" -- "$ILLUM" compare only.exr
+"$ILLUM" render cornell --width 8 --height 8 --spp 1 --quiet -o small.exr
+expect_exit 1 "diff into a missing folder" -- "$ILLUM" compare small.exr small.exr --diff no/such/dir/d.exr
+expect_stderr "no/such/dir/d.exr" "diff into a missing folder"
+expect_exit 1 "tonemap into a missing folder" -- "$ILLUM" tonemap small.exr no/such/dir/t.png
+expect_exit 1 "envmap convert into a folder" -- "$ILLUM" envmap convert small.exr folder.exr --to angular
+expect_stderr "is a folder" "envmap convert into a folder"
 
 finish
