@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
+#include "core/lsan_suppressions.h"
+
 static int check_failures = 0;
 static int check_count = 0;
 

@@ -4,6 +4,7 @@
 
 #include "cli/cli.h"
 #include "cli/cli_mpi.h"
+#include "core/lsan_suppressions.h"
 
 static const char *usage =
     "illum " IL_VERSION_STRING " - global illumination\n"
