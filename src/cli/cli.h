@@ -48,6 +48,9 @@ void cli_log(il_log_level level, const char *message, void *user);
 /* Exit status for an il_status. */
 int cli_exit_for(il_status st);
 
+/* Seconds on the monotonic clock, for the durations the commands report. */
+double cli_now_seconds(void);
+
 /* Writes text to path through a temporary file and a rename. */
 bool cli_write_text_atomic(const char *path, const char *text);
 

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 void cli_error(const char *fmt, ...)
 {
@@ -121,6 +122,13 @@ void cli_log(il_log_level level, const char *message, void *user)
     bool quiet = user && *(const bool *)user;
     if (level == IL_LOG_WARNING && !quiet)
         fprintf(stderr, "illum: warning: %s\n", message);
+}
+
+double cli_now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 int cli_exit_for(il_status st)

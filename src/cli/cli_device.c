@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "cli/cli.h"
 #include "core/error.h"
@@ -75,13 +74,6 @@ int cli_device_require_cuda(void)
 }
 
 #ifdef IL_HAVE_CUDA
-static double seconds_since(const struct timespec *t0)
-{
-    struct timespec t1;
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
-}
-
 /* il_cuda_run's image_fn: the running image handed on as an il_image. */
 static void hand_running_image(const float *rgb, uint32_t width, uint32_t height, uint32_t spp, void *user)
 {
@@ -157,8 +149,7 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
     if (settings.adaptive_threshold > 0.0f)
         return il_fail(err, IL_ERR_INVALID, "--device cuda --method radiosity: no adaptive subdivision on the "
                        "GPU yet (docs/cuda.md); use --device cpu");
-    struct timespec t0;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = cli_now_seconds();
     il_patch_mesh *mesh = NULL;
     il_rad_solution sol;
     memset(&sol, 0, sizeof sol);
@@ -171,7 +162,7 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
     il_radiosity_stats *r = &rs->radiosity;
     if ((st = il_patch_mesh_build(scene, &sizing, &mesh, err)) != IL_OK)
         return st;
-    r->seconds_mesh = seconds_since(&t0);
+    r->seconds_mesh = cli_now_seconds() - t0;
     if ((st = il_rad_solution_init(&sol, mesh->num_patches, err)) == IL_OK &&
         (st = il_rad_direct(scene, mesh, &settings, &sol, err)) == IL_OK &&
         (st = il_krad_build(mesh, sol.direct, settings.ray_samples, settings.seed, &k, err)) == IL_OK) {
@@ -198,12 +189,11 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
         for (uint32_t i = 0; i < mesh->num_patches; i++)
             sol.radiance[i] = v3(radiance[i].x, radiance[i].y, radiance[i].z);
         il_patch_vertex_radiance(mesh, sol.radiance, vr);
-        struct timespec t1;
-        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double t1 = cli_now_seconds();
         if ((st = il_film_create(width, height, &film, err)) == IL_OK &&
             (st = il_patch_render_film(scene, mesh, vr, film, desc, rs, err)) == IL_OK)
             st = il_film_resolve(film, out, err);
-        r->seconds_render = seconds_since(&t1);
+        r->seconds_render = cli_now_seconds() - t1;
     }
     il_film_release(film);
     free(vr);
@@ -229,12 +219,11 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
         return il_fail(err, IL_ERR_INVALID, "--device cuda --method radiosity renders with --spp, not --time "
                        "(docs/cuda.md)");
 #ifdef IL_HAVE_CUDA
-    struct timespec t0;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double t0 = cli_now_seconds();
     il_status st;
     if (desc->method == IL_METHOD_RADIOSITY) {
         st = render_radiosity(scene, desc, width, height, out, rs, err);
-        rs->seconds = seconds_since(&t0);
+        rs->seconds = cli_now_seconds() - t0;
         return st;
     }
     float *rgb = il_malloc(sizeof *rgb * 3 * (size_t)width * height, err);
@@ -255,7 +244,7 @@ il_status cli_device_render_cuda(const il_scene *scene, const il_render_desc *de
     out->width = width;
     out->height = height;
     out->rgb = rgb;
-    rs->seconds = seconds_since(&t0);
+    rs->seconds = cli_now_seconds() - t0;
     return IL_OK;
 #else
     (void)scene; (void)width; (void)height; (void)running; (void)rs;

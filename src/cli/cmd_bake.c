@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
-#include <time.h>
 
 #include <cjson/cJSON.h>
 
@@ -41,13 +40,6 @@ typedef struct bake_options {
     cli_hr_options hr;
     cli_env_options env;             /* --env and its settings */
 } bake_options;
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static bool known_bake_extension(const char *path)
 {
@@ -164,7 +156,7 @@ static bool write_stats(const bake_options *o, const il_bake_result *b, double w
 
 int cmd_bake(int argc, char **argv)
 {
-    double t0 = now_seconds();
+    double t0 = cli_now_seconds();
     bake_options o = {0};
     int rc = parse_options(argc, argv, &o);
     if (rc == -1)
@@ -206,7 +198,7 @@ int cmd_bake(int argc, char **argv)
             cli_radiosity_summary(&bake->stats.radiosity);
         fprintf(stderr, "illum: baked %u meshes -> %s\n", bake->num_meshes, o.output);
     }
-    if (o.stats && !write_stats(&o, bake, now_seconds() - t0))
+    if (o.stats && !write_stats(&o, bake, cli_now_seconds() - t0))
         rc = IL_EXIT_BAD_INPUT;
     il_bake_release(bake);
     il_scene_release(scene);

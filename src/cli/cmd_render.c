@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <cjson/cJSON.h>
@@ -79,13 +78,6 @@ typedef struct render_options {
     cli_method_options m;            /* each method's own options */
     cli_env_options env;             /* --env and its settings */
 } render_options;
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct progress_state {
     bool draw;
@@ -395,7 +387,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
 
 int cmd_render(int argc, char **argv)
 {
-    double t0 = now_seconds();
+    double t0 = cli_now_seconds();
     render_options o = {.run.sampling = true};
     int rc = parse_options(argc, argv, &o);
     if (rc == -1)
@@ -530,7 +522,7 @@ int cmd_render(int argc, char **argv)
         fputc('\n', stderr);
     }
     rc = IL_EXIT_OK;
-    if (o.stats && !write_stats(&o, &rs, scene, now_seconds() - t0))
+    if (o.stats && !write_stats(&o, &rs, scene, cli_now_seconds() - t0))
         rc = IL_EXIT_BAD_INPUT;
     il_film_release(film);
     il_scene_release(scene);
