@@ -412,6 +412,10 @@ typedef struct il_radiosity_stats {
     uint32_t num_surfaces;
     uint32_t steps;            /* shots or sweeps */
     double unshot_fraction;    /* at the end */
+    bool stalled;              /* the solve stopped because unshot_fraction no
+                                  longer fell: light that cannot leave the
+                                  scene (a closed room of albedo 1) has no
+                                  finite solution (docs/radiosity.md) */
     double seconds_mesh;       /* meshing and its ray-casting structure */
     double seconds_form_factors; /* wall time spent computing form-factor rows */
     double seconds_solve;      /* the solve, form factors included */

@@ -172,7 +172,7 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
         if (!radiance || !vr)
             st = IL_ERR_MEMORY;
     }
-    il_cuda_radiosity_stats cs = {0, 0};
+    il_cuda_radiosity_stats cs = {0, 0, false};
     uint32_t steps = 0;
     double frac = 0.0;
     if (st == IL_OK)
@@ -182,6 +182,7 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
         r->num_surfaces = mesh->num_surfaces;
         r->steps = steps;
         r->unshot_fraction = frac;
+        r->stalled = cs.stalled;
         r->seconds_form_factors = cs.seconds_form_factors;
         r->seconds_solve = cs.seconds_form_factors + cs.seconds_sweeps;
         r->rows_computed = mesh->num_patches;

@@ -123,6 +123,7 @@ void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
     cJSON_AddNumberToObject(r, "surfaces", s->num_surfaces);
     cJSON_AddNumberToObject(r, "steps", s->steps);
     cJSON_AddNumberToObject(r, "unshot_fraction", s->unshot_fraction);
+    cJSON_AddBoolToObject(r, "stalled", s->stalled);
     cJSON_AddNumberToObject(r, "seconds_mesh", s->seconds_mesh);
     cJSON_AddNumberToObject(r, "seconds_form_factors", s->seconds_form_factors);
     cJSON_AddNumberToObject(r, "seconds_solve", s->seconds_solve);
@@ -139,6 +140,12 @@ void cli_radiosity_summary(const il_radiosity_stats *s)
             "%.2f s, solve %.2f s, render %.2f s)\n",
             s->num_patches, s->steps, 100.0 * s->unshot_fraction, s->seconds_mesh,
             s->seconds_form_factors, s->seconds_solve, s->seconds_render);
+    if (s->stalled)
+        fprintf(stderr,
+                "illum: warning: radiosity: the solve stopped converging (unshot %.3g%% after %u "
+                "steps): light that cannot leave the scene, such as a closed room of albedo 1, has "
+                "no finite solution; the image shows the light of those steps\n",
+                100.0 * s->unshot_fraction, s->steps);
 }
 
 bool cli_write_json(const char *path, cJSON *j)

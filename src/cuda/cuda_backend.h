@@ -110,6 +110,7 @@ il_status il_cuda_photon_map(const il_kscene *ks, uint32_t num_emitted, float ra
 typedef struct il_cuda_radiosity_stats {
     double seconds_form_factors;   /* casting every row's rays */
     double seconds_sweeps;         /* the Jacobi sweeps until convergence */
+    bool stalled;                  /* stopped: the sweeps no longer converged */
 } il_cuda_radiosity_stats;
 
 /* The Jacobi gathering solve of a packed patch mesh (kernel/

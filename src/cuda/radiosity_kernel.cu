@@ -16,6 +16,7 @@
 #include "cuda/cuda_backend.h"
 #include "cuda/cuda_scene.h"
 #include "kernel/kernel_radiosity_scene.h"
+#include "methods/radiosity/rad_stall.h"
 
 #define REDUCE_THREADS 1024
 
@@ -87,6 +88,9 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
     double *sum = NULL;
     uint32_t step = 0;
     double frac = k->initial_power > 0.0 ? 1.0 : 0.0;
+    il_rad_stall stall;
+    il_rad_stall_start(&stall, 10);
+    bool stuck = false;
     cudaEvent_t e0, e1, e2;
     cudaEventCreate(&e0);
     cudaEventCreate(&e1);
@@ -125,7 +129,7 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
             next = t;
             frac = s / k->initial_power;
             step++;
-            if (frac < tolerance)
+            if (frac < tolerance || (stuck = il_rad_stalled(&stall, step, frac)))
                 break;
         }
         cudaEventRecord(e2);
@@ -139,6 +143,7 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
             cudaEventElapsedTime(&ms_solve, e1, e2);
             stats->seconds_form_factors = 1e-3 * ms_ff;
             stats->seconds_sweeps = 1e-3 * ms_solve;
+            stats->stalled = stuck;
         }
     }
     cudaEventDestroy(e0);

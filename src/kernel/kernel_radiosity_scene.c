@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/vec.h"
 #include "methods/patch_mesh.h"
+#include "methods/radiosity/rad_stall.h"
 
 static ilk_vec3 to_k(il_vec3 v) { return ilk_v3(v.x, v.y, v.z); }
 
@@ -75,7 +76,7 @@ void il_krad_free(il_krad *k)
 }
 
 il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, ilk_vec3 *radiance,
-                        uint32_t *steps, double *fraction, il_error *err)
+                        uint32_t *steps, double *fraction, bool *stalled, il_error *err)
 {
     const ilk_rad_scene *sc = &k->view;
     uint32_t n = sc->num_patches, s = sc->samples;
@@ -100,6 +101,9 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
         radiance[i] = k->direct[i];
     uint32_t step = 0;
     double frac = k->initial_power > 0.0 ? 1.0 : 0.0;
+    il_rad_stall stall;
+    il_rad_stall_start(&stall, 10);
+    bool stuck = false;
     while (k->initial_power > 0.0 && (max_steps == 0 || step < max_steps)) {
 #pragma omp parallel for schedule(static)
         for (uint32_t i = 0; i < n; i++) {
@@ -113,13 +117,15 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
         }
         frac = sum / k->initial_power;
         step++;
-        if (frac < tolerance)
+        if (frac < tolerance || (stuck = il_rad_stalled(&stall, step, frac)))
             break;
     }
     if (steps)
         *steps = step;
     if (fraction)
         *fraction = frac;
+    if (stalled)
+        *stalled = stuck;
     free(hits);
     free(next);
     free(change);

@@ -32,10 +32,11 @@ void il_krad_free(il_krad *k);
 /* The solve of methods/radiosity/rad_solve_gather.c (Jacobi) with the
  * shared kernel: all rows, then sweeps from L = Ld until the changed power
  * over the initial power is below tolerance or max_steps (0: no limit)
- * sweeps were made.  radiance: one per patch.  *steps and *fraction (may be
- * NULL) receive the sweeps made and the last fraction. */
+ * sweeps were made, or the solve stalled (methods/radiosity/rad_stall.h).
+ * radiance: one per patch.  *steps, *fraction and *stalled (each may be
+ * NULL) receive the sweeps made, the last fraction and whether it stalled. */
 il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, ilk_vec3 *radiance,
-                        uint32_t *steps, double *fraction, il_error *err);
+                        uint32_t *steps, double *fraction, bool *stalled, il_error *err);
 
 #ifdef __cplusplus
 }

@@ -107,6 +107,19 @@ expect_no_file baked.txt "bake to .txt"
 expect_exit 2 "bake without -o" -- "$ILLUM" bake simple-room -q
 expect_exit 1 "bake with pt" -- "$ILLUM" bake simple-room --method pt -q -o bad.ply
 expect_no_file bad.ply "bake with pt"
+# A closed white room has no finite solution: the solve stops as stalled,
+# says so, and the image of the light it shot is still written.
+echo '{"materials": {"w": {"diffuse": 1}, "e": {"diffuse": 1, "emission": 5}},
+       "meshes": [{"shape": "box", "size": 4, "flip": true, "material": "w"},
+                  {"shape": "box", "size": 0.5, "material": "e"}],
+       "camera": {"position": [0, 1, 1.9], "target": [0, 0, 0]}}' > white.json
+expect_exit 0 "closed white room" -- "$ILLUM" render white.json --method radiosity --form-factors raycast \
+    --ff-samples 256 --patch-size 0.5 --width 16 --height 16 -o white.exr --stats white-stats.json
+expect_stderr "the solve stopped converging" "closed white room"
+grep -q '"stalled":[[:space:]]*true' white-stats.json || fail "white-stats.json: stalled is not true"
+grep -q '"stalled":[[:space:]]*false' room.json || fail "room.json: stalled is not false"
+expect_file white.exr "closed white room"
+
 expect_exit 1 "bake into a missing folder" -- "$ILLUM" bake simple-room --subdiv 1 --hemicube-res 32 -q -o nodir/x.ply
 expect_no_file nodir "bake into a missing folder"
 expect_exit 1 "bake a missing scene" -- "$ILLUM" bake no-such-scene.obj -q -o bad.ply

@@ -46,14 +46,14 @@ static void compare(il_scene *s, uint32_t subdivisions, uint32_t samples, bool c
     ilk_vec3 *gpu = malloc(sizeof *gpu * n), *cpu = malloc(sizeof *cpu * n);
     uint32_t gsteps = 0, ksteps = 0;
     double gfrac = 0, kfrac = 0;
-    il_cuda_radiosity_stats cs = {0, 0};
+    il_cuda_radiosity_stats cs = {0, 0, false};
     CHECK_OK(il_cuda_radiosity_solve(&k, rdesc.tolerance, 0, gpu, &gsteps, &gfrac, &cs, &err), &err);
     double worst = worst_patch(gpu, sol.radiance, n);
     printf("%u patches x %u rays: gpu %u sweeps in %.4f s (form factors %.4f s), cpu il_rad_run %u sweeps in "
            "%.3f s; worst patch differs by %.4f%%\n", n, samples, gsteps, cs.seconds_form_factors + cs.seconds_sweeps,
            cs.seconds_form_factors, sol.steps, stats.radiosity.seconds_solve, 100.0 * worst);
     if (check) {
-        CHECK_OK(il_krad_solve(&k, rdesc.tolerance, 0, cpu, &ksteps, &kfrac, &err), &err);
+        CHECK_OK(il_krad_solve(&k, rdesc.tolerance, 0, cpu, &ksteps, &kfrac, NULL, &err), &err);
         il_vec3 *kv = malloc(sizeof *kv * n);
         for (uint32_t i = 0; i < n; i++)
             kv[i] = (il_vec3){cpu[i].x, cpu[i].y, cpu[i].z};

@@ -89,7 +89,7 @@ int main(void)
     ilk_vec3 *L = malloc(sizeof *L * n);
     uint32_t steps = 0;
     double frac = 0.0;
-    CHECK_OK(il_krad_solve(&k, rdesc.tolerance, 0, L, &steps, &frac, &err), &err);
+    CHECK_OK(il_krad_solve(&k, rdesc.tolerance, 0, L, &steps, &frac, NULL, &err), &err);
     double brightest = 0.0, worst = 0.0;
     uint32_t worst_i = 0;
     for (uint32_t i = 0; i < n; i++)

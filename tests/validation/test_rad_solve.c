@@ -8,7 +8,11 @@
  *   through reciprocity, see test_solvers_agree);
  * - the same solution, bit for bit, with 1 and 2 threads and with a cache cap
  *   of one byte (every row recomputed) or the default;
- * - on_step is called and can stop the solve. */
+ * - on_step is called and can stop the solve;
+ * - a closed box of albedo 1 (no finite solution) stops as stalled with every
+ *   solver, the shared kernel's Jacobi sweeps too, while albedo 0.999, near
+ *   the stall test's bound, converges (methods/radiosity/rad_stall.h). */
+#include "kernel/kernel_radiosity_scene.h"
 #include "rad_scenes.h"
 
 static il_scene *emitting_box(float rho, float e)
@@ -57,6 +61,7 @@ static void test_closed_box(float rho, il_form_factor_method ffm, il_radiosity_s
         CHECK_REL(mean / area, expect, 0.002);
         CHECK(worst < patch_tol);
         CHECK(c.sol.unshot_fraction < 1e-3);
+        CHECK(!c.sol.stalled && !c.stats.stalled);
         if (solver != IL_SOLVER_SHOOTING)
             CHECK(c.stats.rows_computed == c.mesh->num_patches);
     }
@@ -249,6 +254,57 @@ static void test_on_step(void)
     il_scene_release(s);
 }
 
+/* Albedo 1 in a closed box: every ray-cast row sums to 1, so no light
+ * leaves and the measure cannot fall.  The solve must stop by itself, as
+ * stalled, after its second window (the first takes the reference): 20 n
+ * shots (plus the last batch of 8) or 20 sweeps. */
+static void test_stall(il_radiosity_solver solver)
+{
+    il_scene *s = emitting_box(1.0f, 1.0f);
+    il_radiosity_desc rad = {.subdivisions = 2, .form_factors = IL_FF_RAYCAST, .solver = solver,
+                             .ray_samples = 256};
+    il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .threads = 2, .radiosity = &rad};
+    rad_case c;
+    CHECK_OK(rad_case_run(s, &rd, 0, &c), &g_err);
+    if (c.mesh) {
+        uint32_t n = c.mesh->num_patches;
+        printf("closed box rho 1 solver %d: stalled %d after %u steps, unshot %.6f\n", (int)solver,
+               (int)c.stats.stalled, c.sol.steps, c.sol.unshot_fraction);
+        CHECK(c.sol.stalled && c.stats.stalled);
+        CHECK(c.sol.steps <= (solver == IL_SOLVER_SHOOTING ? 20 * n + 8 : 20));
+        CHECK(c.sol.unshot_fraction > 0.99);
+        if (solver == IL_SOLVER_JACOBI) {
+            /* The shared kernel (the GPU's solve, compiled by gcc) too. */
+            il_krad k;
+            CHECK_OK(il_krad_build(c.mesh, c.sol.direct, 64, 1, &k, &g_err), &g_err);
+            ilk_vec3 *L = malloc(sizeof *L * n);
+            uint32_t steps = 0;
+            double frac = 0.0;
+            bool stalled = false;
+            CHECK_OK(il_krad_solve(&k, 0.01f, 0, L, &steps, &frac, &stalled, &g_err), &g_err);
+            printf("  shared kernel: stalled %d after %u sweeps, change %.6f\n", (int)stalled, steps, frac);
+            CHECK(stalled && steps == 20);
+            free(L);
+            il_krad_free(&k);
+        }
+    }
+    rad_case_free(&c);
+    il_scene_release(s);
+
+    /* Albedo 0.999: slow (the measure falls about 1% per window of 10 n
+     * shots or 10 sweeps) but finite: it must converge, not stall. */
+    s = emitting_box(0.999f, 1.0f);
+    rad.tolerance = 0.05f;
+    CHECK_OK(rad_case_run(s, &rd, 0, &c), &g_err);
+    if (c.mesh) {
+        printf("closed box rho 0.999 solver %d: stalled %d after %u steps, unshot %.6f\n", (int)solver,
+               (int)c.stats.stalled, c.sol.steps, c.sol.unshot_fraction);
+        CHECK(!c.sol.stalled && c.sol.unshot_fraction < 0.05);
+    }
+    rad_case_free(&c);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     /* Gathering: exact per patch with either back-end. */
@@ -265,5 +321,8 @@ int main(void)
     test_solvers_agree();
     test_determinism();
     test_on_step();
+    test_stall(IL_SOLVER_SHOOTING);
+    test_stall(IL_SOLVER_JACOBI);
+    test_stall(IL_SOLVER_GAUSS_SEIDEL);
     return check_report();
 }

@@ -131,6 +131,7 @@ typedef struct il_rad_solution {
     il_vec3 ambient;           /* Cohen et al. 1988 ambient term (display only) */
     uint32_t steps;
     double unshot_fraction;
+    bool stalled;              /* stopped because the measure no longer fell */
 } il_rad_solution;
 
 il_status il_rad_solution_init(il_rad_solution *sol, uint32_t num_patches, il_error *err);

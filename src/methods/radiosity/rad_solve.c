@@ -161,6 +161,7 @@ il_status il_rad_solve(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *
     stats->seconds_solve += omp_get_wtime() - t0;
     stats->steps += sol->steps;
     stats->unshot_fraction = sol->unshot_fraction;
+    stats->stalled = stats->stalled || sol->stalled;
     stats->cache_bytes = il_ff_cache_bytes(cache);
     return st;
 }

@@ -4,6 +4,7 @@
 #define IL_METHODS_RADIOSITY_RAD_SOLVE_H
 
 #include "methods/radiosity/rad.h"
+#include "methods/radiosity/rad_stall.h"
 
 typedef struct il_rad_rows {
     uint32_t cap;              /* most rows per block */

@@ -92,6 +92,9 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
 
     uint32_t steps = 0;
     double frac = p0 > 0.0 ? 1.0 : 0.0;
+    il_rad_stall stall;
+    il_rad_stall_start(&stall, 10);
+    sol->stalled = false;
     while (p0 > 0.0 && (settings->max_steps == 0 || steps < settings->max_steps)) {
         il_vec3 *L = sol->radiance;
         for (uint32_t first = 0; first < n && st == IL_OK; first += bs) {
@@ -134,6 +137,8 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
                                                      steps, frac, omp_get_wtime() - t0))
             break;
         if (frac < settings->tolerance)
+            break;
+        if ((sol->stalled = il_rad_stalled(&stall, steps, frac)))
             break;
     }
     sol->steps = steps;

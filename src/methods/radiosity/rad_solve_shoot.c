@@ -149,6 +149,10 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
     scan_unshot(mesh, sol->unshot, &scan);
     double frac = p0 > 0.0 ? scan.unshot_power / p0 : 0.0;
     uint32_t steps = 0;
+    uint64_t window = 10ull * n;
+    il_rad_stall stall;
+    il_rad_stall_start(&stall, window < UINT32_MAX ? (uint32_t)window : UINT32_MAX);
+    sol->stalled = false;
     while (p0 > 0.0 && frac >= settings->tolerance && scan.count > 0 &&
            (settings->max_steps == 0 || steps < settings->max_steps)) {
         uint32_t batch = scan.count;
@@ -166,6 +170,8 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
             !il_rad_report_step(mesh, settings, sol->radiance,
                                 ambient_term(R, scan.unshot_sum, total_area), display, steps,
                                 frac, omp_get_wtime() - t0))
+            break;
+        if (frac >= settings->tolerance && (sol->stalled = il_rad_stalled(&stall, steps, frac)))
             break;
     }
     sol->steps = steps;
