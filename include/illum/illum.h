@@ -491,6 +491,11 @@ typedef struct il_hr_stats {
     double seconds_render;
     uint64_t peak_bytes;       /* pools of elements, links and visibility */
     bool stopped;              /* il_hr_desc.on_step asked the solve to stop */
+    bool converged;            /* the energy's change fell below energy_eps (or
+                                  there was no light to solve); false when
+                                  max_iterations or a stop ended the solve */
+    double energy_change;      /* the last iteration's relative change of the
+                                  total energy (1 after the first) */
 } il_hr_stats;
 
 /* ---------------------------------------------------------- photon mapping */

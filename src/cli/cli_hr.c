@@ -107,6 +107,8 @@ void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
     cJSON_AddNumberToObject(r, "seconds_render", s->seconds_render);
     cJSON_AddNumberToObject(r, "peak_bytes", (double)s->peak_bytes);
     cJSON_AddBoolToObject(r, "stopped", s->stopped);
+    cJSON_AddBoolToObject(r, "converged", s->converged);
+    cJSON_AddNumberToObject(r, "energy_change", s->energy_change);
 }
 
 void cli_hr_summary(const il_hr_stats *s)
@@ -119,4 +121,10 @@ void cli_hr_summary(const il_hr_stats *s)
             s->iterations, (unsigned long long)s->visibility_rays, s->seconds_setup,
             s->seconds_refine, s->seconds_gather, s->seconds_average, s->seconds_render,
             (double)s->peak_bytes / (1024.0 * 1024.0));
+    if (!s->converged && !s->stopped)
+        fprintf(stderr,
+                "illum: warning: hr: not converged after %u iteration%s (the energy still changed "
+                "by %.3g%%): raise --max-iterations; light that cannot leave the scene, such as a "
+                "closed room of albedo 1, never converges\n",
+                s->iterations, s->iterations == 1 ? "" : "s", 100.0 * s->energy_change);
 }

@@ -19,7 +19,8 @@ expect_file office.exr "render office --method hr"
 expect_stderr "illum: hr: 537 patches" "render office: summary line"
 for k in '"method":[[:space:]]*"hr"' '"hr":' '"patches":[[:space:]]*537' '"elements"' '"leaves"' \
          '"links"' '"iterations"' '"visibility_rays"' '"seconds_setup"' '"seconds_refine"' \
-         '"seconds_gather"' '"seconds_average"' '"seconds_render"' '"peak_bytes"'; do
+         '"seconds_gather"' '"seconds_average"' '"seconds_render"' '"peak_bytes"' \
+         '"converged":[[:space:]]*true' '"energy_change"'; do
     checks=$((checks + 1))
     grep -q "$k" office.json || fail "office.json lacks $k"
 done
@@ -35,6 +36,12 @@ grep -q "mean_luminance  0  0" out.txt && fail "hr image is black"
 # Coarser epsilons give fewer elements (the options reach the solver).
 expect_exit 0 "render coarse" -- "$ILLUM" render office --method hr --bf-eps 0.5 --area-eps 0.05 \
     --vis-rays 4 --max-iterations 3 --width 8 --height 8 --spp 1 -q -o coarse.exr --stats coarse.json
+# Three iterations are not enough to converge: the stats and a warning say so.
+checks=$((checks + 1))
+grep -q '"converged":[[:space:]]*false' coarse.json || fail "coarse.json: converged is not false"
+expect_exit 0 "render one iteration" -- "$ILLUM" render office --method hr --vis-rays 4 --max-iterations 1 \
+    --width 8 --height 8 --spp 1 -o one.exr
+expect_stderr "hr: not converged after 1 iteration" "render one iteration"
 elements() { sed -n 's/.*"elements":[[:space:]]*\([0-9]*\).*/\1/p' "$1" | head -1; }
 checks=$((checks + 1))
 [ "$(elements coarse.json)" -lt "$(elements office.json)" ] || \

@@ -257,7 +257,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     int nt = set->threads;
     uint32_t n = s->num_roots;
     double prev = total_energy(s);
-    bool converged = false;
+    bool converged = s->b_max <= 0.0f; /* no light: nothing to solve */
     for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f && !il_hr_stopping(s);
          it++) {
         il_hr_watch_phase(s, IL_HR_REFINING, it, 0.0);
@@ -306,6 +306,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         double energy = total_energy(s);
         double change = it == 0 ? 1.0 : energy != 0.0 ? fabs(energy - prev) / fabs(energy) : 0.0;
         converged = it > 0 && fabs(energy - prev) <= set->energy_eps * fabs(energy);
+        st->energy_change = change;
         prev = energy;
         il_hr_watch_phase(s, IL_HR_ITERATED, it + 1, change);
         if (converged)
@@ -323,6 +324,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         count_tree(&s->roots[i], &elems, &leaves, &links);
     st->elements = elems;
     st->stopped = il_hr_stopping(s) && !converged && st->iterations < set->max_iterations;
+    st->converged = converged;
     s->watch = NULL; /* it lived in this frame */
     st->leaves = leaves;
     st->links = links;
