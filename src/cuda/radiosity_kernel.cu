@@ -89,7 +89,7 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
     uint32_t step = 0;
     double frac = k->initial_power > 0.0 ? 1.0 : 0.0;
     il_rad_stall stall;
-    il_rad_stall_start(&stall, 10);
+    il_rad_stall_start(&stall, 1);
     bool stuck = false;
     cudaEvent_t e0, e1, e2;
     cudaEventCreate(&e0);

@@ -102,7 +102,7 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
     uint32_t step = 0;
     double frac = k->initial_power > 0.0 ? 1.0 : 0.0;
     il_rad_stall stall;
-    il_rad_stall_start(&stall, 10);
+    il_rad_stall_start(&stall, 1);
     bool stuck = false;
     while (k->initial_power > 0.0 && (max_steps == 0 || step < max_steps)) {
 #pragma omp parallel for schedule(static)

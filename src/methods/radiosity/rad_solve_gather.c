@@ -93,7 +93,7 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
     uint32_t steps = 0;
     double frac = p0 > 0.0 ? 1.0 : 0.0;
     il_rad_stall stall;
-    il_rad_stall_start(&stall, 10);
+    il_rad_stall_start(&stall, 1);
     sol->stalled = false;
     while (p0 > 0.0 && (settings->max_steps == 0 || steps < settings->max_steps)) {
         il_vec3 *L = sol->radiance;

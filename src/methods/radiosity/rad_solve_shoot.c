@@ -149,9 +149,8 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
     scan_unshot(mesh, sol->unshot, &scan);
     double frac = p0 > 0.0 ? scan.unshot_power / p0 : 0.0;
     uint32_t steps = 0;
-    uint64_t window = 10ull * n;
     il_rad_stall stall;
-    il_rad_stall_start(&stall, window < UINT32_MAX ? (uint32_t)window : UINT32_MAX);
+    il_rad_stall_start(&stall, n);
     sol->stalled = false;
     while (p0 > 0.0 && frac >= settings->tolerance && scan.count > 0 &&
            (settings->max_steps == 0 || steps < settings->max_steps)) {

@@ -21,15 +21,19 @@
  * window only takes the reference: Gauss-Seidel's first sweeps raise the
  * measure above its start (a sweep's change counts the updates it made
  * itself), so a stall is seen after two windows at the earliest. */
+#define IL_RAD_STALL_WINDOW 10u /* sweeps, or shots per patch, between checks */
+
 typedef struct il_rad_stall {
     uint32_t window;           /* steps per check */
     uint32_t last_step;        /* the step of the last check */
     double last_fraction;      /* the measure then */
 } il_rad_stall;
 
-static inline void il_rad_stall_start(il_rad_stall *s, uint32_t window)
+/* units: 1 for gathering sweeps, the number of patches for shots. */
+static inline void il_rad_stall_start(il_rad_stall *s, uint32_t units)
 {
-    s->window = window ? window : 1;
+    uint64_t window = (uint64_t)IL_RAD_STALL_WINDOW * (units ? units : 1);
+    s->window = window < UINT32_MAX ? (uint32_t)window : UINT32_MAX;
     s->last_step = 0;
     s->last_fraction = -1.0; /* none yet */
 }
