@@ -4,9 +4,10 @@
  *   rows    one thread per ILK_RAD_ROW_PART rays of a row (the CPU
  *           solver's rays, the generator advanced to the part's first)
  *           writes the patch each ray sees;
- *   sweep   one warp per patch: the Jacobi update from the previous
- *           sweep's radiance (two device buffers, swapped), and the power
- *           it changed;
+ *   sweep   one warp per patch: the Jacobi sweep in increments
+ *           (kernel_radiosity.h): the patch's change from the previous
+ *           sweep's changes (two device buffers, swapped), added to its
+ *           radiance, and the power it carries;
  *   reduce  one block sums the changes in a fixed order (deterministic, in
  *           double), and only that number goes back to the host, to decide
  *           whether to stop.
@@ -31,23 +32,25 @@ __global__ static void rad_row_kernel(ilk_rad_scene sc, uint32_t parts, uint32_t
 }
 
 /* One warp per patch: each lane sums a strided share of the row's hits,
- * the lanes' sums are added by shuffles, lane 0 writes the update. */
-__global__ static void rad_sweep_kernel(ilk_rad_scene sc, const uint32_t *hits, const ilk_vec3 *direct,
-                                        const ilk_vec3 *L, ilk_vec3 *next, float *change)
+ * the lanes' sums are added by shuffles, lane 0 writes the change and adds
+ * it to the radiance (L is only read by its own patch's lane 0). */
+__global__ static void rad_sweep_kernel(ilk_rad_scene sc, const uint32_t *hits, const ilk_vec3 *delta,
+                                        ilk_vec3 *L, ilk_vec3 *next, float *change)
 {
     uint32_t i = (uint32_t)(((uint64_t)blockIdx.x * blockDim.x + threadIdx.x) / 32u), lane = threadIdx.x % 32u;
     if (i >= sc.num_patches)
         return;            /* whole warps leave together: blockDim is a multiple of 32 */
-    ilk_vec3 s = ilk_rad_sum(&sc, hits + (size_t)i * sc.samples, lane, 32u, L);
+    ilk_vec3 s = ilk_rad_sum(&sc, hits + (size_t)i * sc.samples, lane, 32u, delta);
     for (int off = 16; off > 0; off /= 2) {
         s.x += __shfl_down_sync(0xffffffffu, s.x, off);
         s.y += __shfl_down_sync(0xffffffffu, s.y, off);
         s.z += __shfl_down_sync(0xffffffffu, s.z, off);
     }
     if (lane == 0) {
-        ilk_vec3 v = ilk_rad_update(&sc, i, s, direct);
-        next[i] = v;
-        change[i] = ilk_rad_change(&sc.patches[i], v, L[i]);
+        ilk_vec3 d = ilk_rad_bounce(&sc, i, s);
+        next[i] = d;
+        L[i] = ilk_add(L[i], d);
+        change[i] = ilk_rad_change(&sc.patches[i], d);
     }
 }
 
@@ -82,7 +85,7 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
     ilk_bvh_node *nodes = NULL;
     ilk_tri *tris = NULL;
     ilk_patch *patches = NULL;
-    ilk_vec3 *direct = NULL, *L = NULL, *next = NULL;
+    ilk_vec3 *delta = NULL, *L = NULL, *next = NULL;
     uint32_t *hits = NULL;
     float *change = NULL;
     double *sum = NULL;
@@ -98,11 +101,11 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
     if ((st = il_cuda_upload(&nodes, k->bvh.nodes, k->bvh.num_nodes, "uploading the BVH", err)) == IL_OK &&
         (st = il_cuda_upload(&tris, k->bvh.tris, k->bvh.num_tris, "uploading the triangles", err)) == IL_OK &&
         (st = il_cuda_upload(&patches, k->patches, n, "uploading the patches", err)) == IL_OK &&
-        (st = il_cuda_upload(&direct, k->direct, n, "uploading the direct light", err)) == IL_OK &&
+        (st = il_cuda_upload(&delta, k->direct, n, "uploading the direct light", err)) == IL_OK &&
         (st = il_cuda_upload(&L, k->direct, n, "uploading the radiance", err)) == IL_OK &&
-        (st = il_cuda_alloc(&next, n, "allocating the radiance", err)) == IL_OK &&
+        (st = il_cuda_alloc(&next, n, "allocating the sweep changes", err)) == IL_OK &&
         (st = il_cuda_alloc(&hits, (size_t)n * h->samples, "allocating the form-factor rows", err)) == IL_OK &&
-        (st = il_cuda_alloc(&change, n, "allocating the sweep changes", err)) == IL_OK &&
+        (st = il_cuda_alloc(&change, n, "allocating the changes' power", err)) == IL_OK &&
         (st = il_cuda_alloc(&sum, 1, "allocating the sweep sum", err)) == IL_OK && n > 0) {
         ilk_rad_scene sc = *h;
         sc.bvh.nodes = nodes;
@@ -117,15 +120,15 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
         cudaEventRecord(e1);
         st = il_cuda_check(cudaGetLastError(), "launching the form-factor kernel", err);
         while (st == IL_OK && k->initial_power > 0.0 && (max_steps == 0 || step < max_steps)) {
-            rad_sweep_kernel<<<blocks, block>>>(sc, hits, direct, L, next, change);
+            rad_sweep_kernel<<<blocks, block>>>(sc, hits, delta, L, next, change);
             rad_reduce_kernel<<<1, REDUCE_THREADS>>>(change, n, sum);
             double s = 0.0;
             if ((st = il_cuda_check(cudaGetLastError(), "launching the gather kernel", err)) != IL_OK ||
                 (st = il_cuda_check(cudaMemcpy(&s, sum, sizeof s, cudaMemcpyDeviceToHost), "the gather kernel",
                                     err)) != IL_OK)
                 break;
-            ilk_vec3 *t = L;
-            L = next;
+            ilk_vec3 *t = delta;
+            delta = next;
             next = t;
             frac = s / k->initial_power;
             step++;
@@ -152,7 +155,7 @@ extern "C" il_status il_cuda_radiosity_solve(const il_krad *k, float tolerance, 
     cudaFree(nodes);
     cudaFree(tris);
     cudaFree(patches);
-    cudaFree(direct);
+    cudaFree(delta);
     cudaFree(L);
     cudaFree(next);
     cudaFree(hits);

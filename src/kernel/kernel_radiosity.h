@@ -246,27 +246,31 @@ IL_DEVICE_INLINE ilk_vec3 ilk_rad_sum(const ilk_rad_scene *sc, const uint32_t *h
     return ilk_v3(r, g, b);
 }
 
-/* The Jacobi update of patch i from the sum over its row's hits of the
- * previous sweep's radiance: Ld_i + rho_i sum / samples. */
-IL_DEVICE_INLINE ilk_vec3 ilk_rad_update(const ilk_rad_scene *sc, uint32_t i, ilk_vec3 sum, const ilk_vec3 *direct)
+/* Jacobi sweeps in increments.  The sweep L' = Ld + rho F L (F the row's
+ * hits over samples) is run on the change d = L - L_prev instead of on L:
+ * d' = rho F d, L' = L + d', starting from L = d = Ld.  It is the same
+ * iteration, but the sum runs over the small changes rather than over
+ * radiances of nearly equal size, and the convergence measure is |d'|
+ * itself rather than the difference of two nearly equal floats: near an
+ * albedo of 1 (L near 1000 changing by 0.01 a sweep at albedo 0.999), the
+ * sweeps on L in float measured their change with 10% noise and stopped
+ * short (methods/radiosity/rad_stall.h).  This is the residual form of
+ * Jacobi iteration (Cohen & Wallace 1993, section 5.3). */
+
+/* The change of patch i from the sum over its row's hits of the previous
+ * sweep's changes: rho_i sum / samples. */
+IL_DEVICE_INLINE ilk_vec3 ilk_rad_bounce(const ilk_rad_scene *sc, uint32_t i, ilk_vec3 sum)
 {
     float inv = 1.0f / (float)sc->samples;
     ilk_vec3 rho = sc->patches[i].rho;
-    return ilk_add(direct[i], ilk_v3(rho.x * (sum.x * inv), rho.y * (sum.y * inv), rho.z * (sum.z * inv)));
+    return ilk_v3(rho.x * (sum.x * inv), rho.y * (sum.y * inv), rho.z * (sum.z * inv));
 }
 
-/* One Jacobi update of patch i (one thread). */
-IL_DEVICE_INLINE ilk_vec3 ilk_rad_gather(const ilk_rad_scene *sc, uint32_t i, const uint32_t *hits,
-                                         const ilk_vec3 *direct, const ilk_vec3 *L)
+/* The power a change d carries at patch i: A_i lum(|d|), the solver's
+ * convergence measure (methods/radiosity/rad_solve_gather.c). */
+IL_DEVICE_INLINE float ilk_rad_change(const ilk_patch *p, ilk_vec3 d)
 {
-    return ilk_rad_update(sc, i, ilk_rad_sum(sc, hits, 0, 1, L), direct);
-}
-
-/* The power a sweep changed at patch i: A_i lum(|L_new - L_old|), the
- * solver's convergence measure (methods/radiosity/rad_solve_gather.c). */
-IL_DEVICE_INLINE float ilk_rad_change(const ilk_patch *p, ilk_vec3 a, ilk_vec3 b)
-{
-    return p->area * (0.2126f * fabsf(a.x - b.x) + 0.7152f * fabsf(a.y - b.y) + 0.0722f * fabsf(a.z - b.z));
+    return p->area * (0.2126f * fabsf(d.x) + 0.7152f * fabsf(d.y) + 0.0722f * fabsf(d.z));
 }
 
 #endif

@@ -82,10 +82,11 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
     uint32_t n = sc->num_patches, s = sc->samples;
     size_t nn = n ? n : 1;
     uint32_t *hits = il_malloc(sizeof *hits * nn * s, err);
-    ilk_vec3 *next = il_malloc(sizeof *next * nn, err);
+    ilk_vec3 *delta = il_malloc(sizeof *delta * nn, err), *next = il_malloc(sizeof *next * nn, err);
     float *change = il_malloc(sizeof *change * nn, err);
-    if (!hits || !next || !change) {
+    if (!hits || !delta || !next || !change) {
         free(hits);
+        free(delta);
         free(next);
         free(change);
         return IL_ERR_MEMORY;
@@ -97,8 +98,9 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
         uint32_t i = (uint32_t)(t / parts), first = (uint32_t)(t % parts) * ILK_RAD_ROW_PART;
         ilk_rad_row_part(sc, i, first, ILK_RAD_ROW_PART, hits + (size_t)i * s + first);
     }
+    /* Sweeps in increments (kernel_radiosity.h): L = d = Ld, then d' = rho F d, L += d'. */
     for (uint32_t i = 0; i < n; i++)
-        radiance[i] = k->direct[i];
+        radiance[i] = delta[i] = k->direct[i];
     uint32_t step = 0;
     double frac = k->initial_power > 0.0 ? 1.0 : 0.0;
     il_rad_stall stall;
@@ -107,14 +109,17 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
     while (k->initial_power > 0.0 && (max_steps == 0 || step < max_steps)) {
 #pragma omp parallel for schedule(static)
         for (uint32_t i = 0; i < n; i++) {
-            next[i] = ilk_rad_gather(sc, i, hits + (size_t)i * s, k->direct, radiance);
-            change[i] = ilk_rad_change(&sc->patches[i], next[i], radiance[i]);
+            next[i] = ilk_rad_bounce(sc, i, ilk_rad_sum(sc, hits + (size_t)i * s, 0, 1, delta));
+            change[i] = ilk_rad_change(&sc->patches[i], next[i]);
         }
         double sum = 0.0;
         for (uint32_t i = 0; i < n; i++) {
             sum += change[i];
-            radiance[i] = next[i];
+            radiance[i] = ilk_add(radiance[i], next[i]);
         }
+        ilk_vec3 *t = delta;
+        delta = next;
+        next = t;
         frac = sum / k->initial_power;
         step++;
         if (frac < tolerance || (stuck = il_rad_stalled(&stall, step, frac)))
@@ -127,6 +132,7 @@ il_status il_krad_solve(const il_krad *k, float tolerance, uint32_t max_steps, i
     if (stalled)
         *stalled = stuck;
     free(hits);
+    free(delta);
     free(next);
     free(change);
     return IL_OK;

@@ -38,6 +38,18 @@ if [ "$cuda" = on ] && [ "$gpu" = yes ]; then
     expect_exit 1 "render --device cuda --method radiosity --time" -- "$ILLUM" render cornell --device cuda --method radiosity --time 1 -o bad.exr
     expect_stderr "not --time" "render --device cuda --method radiosity --time"
     expect_no_file bad.exr "render --device cuda --method radiosity --time"
+    # A closed white room has no finite solution: the GPU's sweeps stop as
+    # stalled, say so, and write the image (the same test as on the CPU).
+    echo '{"materials": {"w": {"diffuse": 1}, "e": {"diffuse": 1, "emission": 5}},
+           "meshes": [{"shape": "box", "size": 4, "flip": true, "material": "w"},
+                      {"shape": "box", "size": 0.5, "material": "e"}],
+           "camera": {"position": [0, 1, 1.9], "target": [0, 0, 0]}}' > white.json
+    expect_exit 0 "closed white room on the GPU" -- "$ILLUM" render white.json --device cuda --method radiosity \
+        --patch-size 0.5 --width 16 --height 16 -o white.exr --stats white-stats.json
+    expect_stderr "the solve stopped converging" "closed white room on the GPU"
+    expect_file white.exr "closed white room on the GPU"
+    checks=$((checks + 1))
+    grep -q '"stalled":[[:space:]]*true' white-stats.json || { fail "white-stats.json: stalled is not true"; cat white-stats.json >&2; }
     expect_interrupted 1 "interrupted GPU render" -- "$ILLUM" render cornell --device cuda --spp 16000000 --width 64 --height 64 -q -o stopped.pfm --stats stopped.json
     expect_file stopped.pfm "interrupted GPU render"
     checks=$((checks + 1))

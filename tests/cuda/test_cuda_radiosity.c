@@ -3,7 +3,10 @@
  * and the same shared kernel compiled by gcc (il_krad_solve) on the
  * Cornell box: every patch within 0.5% (the issue's bound), about the same
  * number of sweeps.  Then the solve time of a mesh of about 17,000 patches
- * (printed, not tested).  Exits 77 (a skip for ctest) without a GPU or
+ * (printed, not tested).  Then the stall test (methods/radiosity/rad_stall.h)
+ * on the GPU: a closed box of albedo 1 stops as stalled after 2 windows,
+ * like the kernel on the CPU, and one of albedo 0.999 converges in the same
+ * number of sweeps as the kernel on the CPU.  Exits 77 (a skip for ctest) without a GPU or
  * driver, as on CI. */
 #include <stdlib.h>
 #include <string.h>
@@ -11,7 +14,9 @@
 #include "cuda_test.h"
 #include "kernel/kernel_radiosity_scene.h"
 #include "methods/radiosity/rad.h"
+#include "methods/radiosity/rad_stall.h"
 #include "scene/scene.h"
+#include "validation/rad_scenes.h"
 
 #define SEED 11
 
@@ -71,6 +76,51 @@ static void compare(il_scene *s, uint32_t subdivisions, uint32_t samples, bool c
     il_patch_mesh_release(mesh);
 }
 
+/* The GPU's Jacobi sweeps and the shared kernel's on the CPU, over the same
+ * form factors, on a closed box of albedo rho emitting 1. */
+static void test_stall(float rho)
+{
+    il_error err = {0};
+    il_scene *s = new_scene();
+    uint32_t m = diffuse_material(s, v3s(rho), v3s(1.0f));
+    const uint32_t mat[6] = {m, m, m, m, m, m};
+    add_box_room(s, 1.0f, mat);
+    CHECK_OK(il_scene_commit(s, &err), &err);
+    il_radiosity_desc rdesc = {.subdivisions = 2, .form_factors = IL_FF_RAYCAST, .ray_samples = 64,
+                               .solver = IL_SOLVER_JACOBI, .tolerance = 1e-4f};
+    il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .seed = 1, .radiosity = &rdesc};
+    il_patch_mesh *mesh = NULL;
+    il_rad_solution sol;
+    il_render_stats stats = {0};
+    CHECK_OK(il_rad_run(s, &rd, &mesh, &sol, NULL, &stats, &err), &err);
+    if (mesh) {
+        uint32_t n = mesh->num_patches, gsteps = 0, ksteps = 0;
+        il_krad k;
+        CHECK_OK(il_krad_build(mesh, sol.direct, 64, 1, &k, &err), &err);
+        ilk_vec3 *gpu = malloc(sizeof *gpu * n), *cpu = malloc(sizeof *cpu * n);
+        double gfrac = 0, kfrac = 0;
+        bool kstalled = false;
+        il_cuda_radiosity_stats cs = {0, 0, false};
+        CHECK_OK(il_cuda_radiosity_solve(&k, rdesc.tolerance, 0, gpu, &gsteps, &gfrac, &cs, &err), &err);
+        CHECK_OK(il_krad_solve(&k, rdesc.tolerance, 0, cpu, &ksteps, &kfrac, &kstalled, &err), &err);
+        printf("closed box rho %.3f: gpu stalled %d after %u sweeps (change %.6f), kernel on the cpu stalled %d "
+               "after %u sweeps (change %.6f)\n", (double)rho, (int)cs.stalled, gsteps, gfrac, (int)kstalled,
+               ksteps, kfrac);
+        CHECK(cs.stalled == kstalled);
+        CHECK(cs.stalled == (rho >= 1.0f));
+        if (rho >= 1.0f)
+            CHECK(gsteps == 2 * IL_RAD_STALL_WINDOW && ksteps == 2 * IL_RAD_STALL_WINDOW);
+        else
+            CHECK(gsteps + 1 >= ksteps && gsteps <= ksteps + 1 && gfrac < rdesc.tolerance);
+        free(gpu);
+        free(cpu);
+        il_krad_free(&k);
+        il_rad_solution_free(&sol);
+        il_patch_mesh_release(mesh);
+    }
+    il_scene_release(s);
+}
+
 int main(void)
 {
     if (cuda_test_require_gpu() != 0)
@@ -81,5 +131,7 @@ int main(void)
     compare(s, 3, 1024, true);
     compare(s, 5, 256, false);
     il_scene_release(s);
+    test_stall(1.0f);
+    test_stall(0.999f);
     return check_report();
 }

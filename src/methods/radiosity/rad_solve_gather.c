@@ -3,7 +3,12 @@
  * (Cohen & Wallace 1993, section 5.3: Jacobi and Gauss-Seidel iteration).
  *
  * Jacobi: every patch gathers from the previous sweep's values; the patches
- * of a block are updated in parallel.  Gauss-Seidel: patches are updated in
+ * of a block are updated in parallel.  It runs in increments, on the change
+ * d = L - L_prev: d' = rho F d, L += d', from L = d = Ld (the same
+ * iteration; kernel/kernel_radiosity.h explains why: the measure is then
+ * |d'| itself, not a difference of nearly equal floats, so it keeps falling
+ * near an albedo of 1, where it otherwise sticks at a few ulps of L and the
+ * solve stops as stalled).  Gauss-Seidel: patches are updated in
  * place in patch order, each seeing the values already updated in this
  * sweep (sequential; the rows are still computed in parallel ahead of use, a
  * block at a time).
@@ -31,9 +36,9 @@ static uint32_t block_size(int threads, uint32_t n)
     return n < b ? (n ? n : 1u) : b;
 }
 
-/* Ld_i + rho_i sum_j F_ij L_j. */
-static il_vec3 gather(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t i,
-                      const il_vec3 *direct, const il_vec3 *L)
+/* rho_i sum_j F_ij L_j, in double. */
+static void reflected(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t i, const il_vec3 *L,
+                      double out[3])
 {
     double r = 0.0, g = 0.0, b = 0.0;
     for (uint32_t k = 0; k < row->count; k++) {
@@ -46,7 +51,9 @@ static il_vec3 gather(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t 
         b += f * L[j].z;
     }
     il_vec3 rho = mesh->patches[i].rho;
-    return v3_add(direct[i], v3_mul(rho, v3((float)r, (float)g, (float)b)));
+    out[0] = rho.x * r;
+    out[1] = rho.y * g;
+    out[2] = rho.z * b;
 }
 
 static il_vec3 v3_abs(il_vec3 a) { return v3(fabsf(a.x), fabsf(a.y), fabsf(a.z)); }
@@ -58,9 +65,10 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
     uint32_t n = mesh->num_patches;
     bool jacobi = settings->solver == IL_SOLVER_JACOBI;
     double t0 = omp_get_wtime();
+    /* Jacobi's increments start from d = Ld. */
     for (uint32_t i = 0; i < n; i++) {
         sol->radiance[i] = sol->direct[i];
-        sol->unshot[i] = v3s(0.0f);
+        sol->unshot[i] = jacobi ? sol->direct[i] : v3s(0.0f);
     }
     sol->steps = 0;
     sol->ambient = v3s(0.0f);
@@ -106,16 +114,22 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
 #pragma omp parallel for schedule(static) num_threads(settings->threads)
                 for (uint32_t k = 0; k < count; k++) {
                     uint32_t i = first + k;
-                    next[i] = gather(mesh, rows.row[k], i, sol->direct, L);
+                    double o[3];
+                    reflected(mesh, rows.row[k], i, sol->unshot, o);
+                    next[i] = v3((float)o[0], (float)o[1], (float)o[2]);
                 }
             } else {
                 for (uint32_t k = 0; k < count; k++) {
                     uint32_t i = first + k;
-                    il_vec3 v = gather(mesh, rows.row[k], i, sol->direct, L);
-                    il_vec3 d = v3_sub(v, L[i]);
-                    sol->unshot[i] = d;
-                    change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(d));
-                    L[i] = v;
+                    /* The change Ld + rho F L - L in double, not as a
+                     * difference of two nearly equal floats (see Jacobi). */
+                    double o[3];
+                    reflected(mesh, rows.row[k], i, L, o);
+                    il_vec3 ld = sol->direct[i], l = L[i];
+                    double d[3] = {ld.x + o[0] - l.x, ld.y + o[1] - l.y, ld.z + o[2] - l.z};
+                    sol->unshot[i] = v3((float)d[0], (float)d[1], (float)d[2]);
+                    change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(sol->unshot[i]));
+                    L[i] = v3((float)(l.x + d[0]), (float)(l.y + d[1]), (float)(l.z + d[2]));
                 }
             }
         }
@@ -123,10 +137,9 @@ il_status il_rad_solve_gathering(const il_patch_mesh *mesh, const il_ff *ff, il_
             break;
         if (jacobi)
             for (uint32_t i = 0; i < n; i++) {
-                il_vec3 d = v3_sub(next[i], L[i]);
-                sol->unshot[i] = d;
-                change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(d));
-                L[i] = next[i];
+                sol->unshot[i] = next[i];
+                change[i] = (double)mesh->patches[i].area * il_luminance(v3_abs(next[i]));
+                L[i] = v3_add(L[i], next[i]);
             }
         double sum = 0.0;
         for (uint32_t i = 0; i < n; i++)
