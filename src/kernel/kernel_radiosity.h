@@ -254,8 +254,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_rad_sum(const ilk_rad_scene *sc, const uint32_t *h
  * itself rather than the difference of two nearly equal floats: near an
  * albedo of 1 (L near 1000 changing by 0.01 a sweep at albedo 0.999), the
  * sweeps on L in float measured their change with 10% noise and stopped
- * short (methods/radiosity/rad_stall.h).  This is the residual form of
- * Jacobi iteration (Cohen & Wallace 1993, section 5.3). */
+ * short (methods/radiosity/rad_stall.h).  It is Jacobi iteration (Cohen &
+ * Wallace 1993, section 5.3) written for its successive differences. */
 
 /* The change of patch i from the sum over its row's hits of the previous
  * sweep's changes: rho_i sum / samples. */

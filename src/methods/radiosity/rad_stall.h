@@ -13,38 +13,40 @@
  * it is and the solve would never end.  With every albedo at most rho < 1 it
  * cannot stall: a shot of the patch with the most unshot power (at least the
  * mean of n patches) removes that power and gives back at most rho of it, so
- * 100 n shots cut the unshot power by at least a factor exp(-100 (1 - rho));
+ * 10 n shots cut the unshot power by at least a factor exp(-10 (1 - rho));
  * a Jacobi sweep multiplies the power it changes by at most rho
- * (reciprocity, rows summing to at most 1), so 100 sweeps by rho^100.  Both
- * are below 0.99 for any rho below 0.9999.  So a window of 100 n shots or
- * 100 sweeps that lowers the measure by less than 1% is a stall.  The test
+ * (reciprocity, rows summing to at most 1), so 10 sweeps by rho^10.  Both
+ * are below 0.999 for any rho below 0.9999.  So a window of 10 n shots or 10
+ * sweeps that lowers the measure by less than 0.1% is a stall.  The test
  * compares the measure's mean over each window with its mean over the one
- * before: if every step of a window is below 0.99 times the step a window
- * earlier, so is the mean.
+ * before (if every step of a window is below 0.999 times the step a window
+ * earlier, so is the mean), which noise cannot pass for a stall as easily
+ * as single values.
  *
- * Why means over so long a window: noise in the measure must not look like
- * a stall.  The first version compared single values 10 sweeps apart (a
- * true drop of 1% at rho = 0.999), and the shared kernel's float sweeps,
- * which then measured their change as a difference of nearly equal floats
- * (L near 1000 changing by 0.1 to 0.01 a sweep, a jitter of 0.5% to 10%),
- * stopped such a solve as stalled after 2,040 sweeps.  The Jacobi sweeps now
- * run in increments and Gauss-Seidel forms its change in double, so the
- * measure is smooth (rad_solve_gather.c, kernel/kernel_radiosity.h); the
- * window of 100 and the means stay as the margin, a true drop of 9.5% at
- * rho = 0.999 against noise that averages out.
+ * The first window is left out: Gauss-Seidel's first sweeps raise the
+ * measure above its start (a sweep's change counts the updates it made
+ * itself), and at albedo 0.999 the mean of its first 10 sweeps lies below
+ * that of the next 10.  The second window gives the reference, so a stall
+ * is seen after three windows at the earliest: 30 sweeps or 30 n shots.
  *
- * The first window only takes the reference: Gauss-Seidel's first sweeps
- * raise the measure above its start (a sweep's change counts the updates it
- * made itself), so a stall is seen after two windows at the earliest. */
-#define IL_RAD_STALL_WINDOW 100u /* sweeps, or shots per patch, in a window */
-#define IL_RAD_STALL_DROP 0.99   /* a window's mean must fall below this times the last */
+ * The measure must be free of rounding noise near rho = 1.  A first version
+ * compared single values 10 sweeps apart while the float Jacobi sweeps (the
+ * shared kernel, the GPU) measured their change as a difference of nearly
+ * equal floats (L near 1000 changing by 0.1 to 0.01 a sweep at rho = 0.999,
+ * a jitter of 0.5% to 10%); it stopped such a solve as stalled after 2,040
+ * sweeps.  The float Jacobi sweeps now run in increments, and the CPU's
+ * gathering solvers keep the radiance in double while they solve
+ * (kernel/kernel_radiosity.h, rad_solve_gather.c). */
+#define IL_RAD_STALL_WINDOW 10u /* sweeps, or shots per patch, in a window */
+#define IL_RAD_STALL_DROP 0.999  /* a window's mean must fall below this times the last */
 
 typedef struct il_rad_stall {
     uint32_t window;           /* steps per window */
     uint32_t last_step;        /* the step that ended the last window */
     double sum;                /* the measures seen in this window */
     uint32_t count;            /* how many */
-    double last_mean;          /* the last window's mean; < 0: none yet */
+    uint32_t windows;          /* how many windows have ended */
+    double last_mean;          /* the last window's mean */
 } il_rad_stall;
 
 /* units: 1 for gathering sweeps, the number of patches for shots. */
@@ -55,11 +57,13 @@ static inline void il_rad_stall_start(il_rad_stall *s, uint32_t units)
     s->last_step = 0;
     s->sum = 0.0;
     s->count = 0;
-    s->last_mean = -1.0;
+    s->windows = 0;
+    s->last_mean = 0.0;
 }
 
 /* Adds the measure `fraction` after `steps` steps; true when the window it
- * ends had a mean less than 1% below the window before. */
+ * ends, the third or a later one, had a mean less than 0.1% below the window
+ * before. */
 static inline bool il_rad_stalled(il_rad_stall *s, uint32_t steps, double fraction)
 {
     s->sum += fraction;
@@ -67,7 +71,7 @@ static inline bool il_rad_stalled(il_rad_stall *s, uint32_t steps, double fracti
     if (steps - s->last_step < s->window)
         return false;
     double mean = s->sum / s->count;
-    bool stalled = s->last_mean >= 0.0 && !(mean < IL_RAD_STALL_DROP * s->last_mean);
+    bool stalled = ++s->windows >= 3 && !(mean < IL_RAD_STALL_DROP * s->last_mean);
     s->last_step = steps;
     s->sum = 0.0;
     s->count = 0;
