@@ -1,5 +1,8 @@
 /* A progressive image on the GPU, shared by the path and photon kernels:
- * one thread per pixel adds a batch of its samples into a float sum, the
+ * one thread per pixel adds a batch of its samples into a double sum (as
+ * the CPU film does: a float sum of batches stops growing once a batch is
+ * below half its ulp, after about 2^28 samples of a pixel, and rounds every
+ * batch long before; an hour at 512x512 on an H200 is 10^7 samples), the
  * host launches batch after batch (short launches, which a display GPU's
  * watchdog tolerates, and the same image as one long launch, since every
  * sample's random stream is keyed by its index), waits for each to report
@@ -18,7 +21,7 @@
  * casts to *rays.  Each thread adds its rays to *ray_total once. */
 template <typename Sampler>
 __global__ static void il_cuda_pixel_kernel(Sampler sample, uint32_t width, uint32_t height, uint32_t first,
-                                            uint32_t n, float *sum, unsigned long long *ray_total)
+                                            uint32_t n, double *sum, unsigned long long *ray_total)
 {
     uint32_t x = blockIdx.x * blockDim.x + threadIdx.x, y = blockIdx.y * blockDim.y + threadIdx.y;
     if (x >= width || y >= height)
@@ -34,18 +37,31 @@ __global__ static void il_cuda_pixel_kernel(Sampler sample, uint32_t width, uint
             b += L.z;
         }
     }
-    float *o = sum + 3 * ((size_t)y * width + x);
+    double *o = sum + 3 * ((size_t)y * width + x);
     o[0] += r;
     o[1] += g;
     o[2] += b;
     atomicAdd(ray_total, (unsigned long long)rays);
 }
 
-__global__ static void il_cuda_scale_kernel(float *v, size_t n, float s)
+/* out = sum * scale, in float. */
+__global__ static void il_cuda_resolve_kernel(const double *sum, float *out, size_t n, double scale)
 {
     size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (i < n)
-        v[i] *= s;
+        out[i] = (float)(sum[i] * scale);
+}
+
+/* The sums divided by the samples done, into the host's rgb (through the
+ * device buffer out). */
+static inline il_status il_cuda_resolve(const double *sum, float *out, size_t values, uint32_t done, float *rgb,
+                                        const char *what, il_error *err)
+{
+    il_cuda_resolve_kernel<<<(uint32_t)((values + 255) / 256), 256>>>(sum, out, values, 1.0 / (double)done);
+    il_status st = il_cuda_check(cudaGetLastError(), what, err);
+    if (st == IL_OK)
+        st = il_cuda_check(cudaMemcpy(rgb, out, sizeof(float) * values, cudaMemcpyDeviceToHost), what, err);
+    return st;
 }
 
 /* The samples per pixel a render asks for: spp, or when 0 no bound with a
@@ -64,19 +80,16 @@ static inline double il_cuda_seconds_since(const struct timespec *t0)
     return (double)(t1.tv_sec - t0->tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0->tv_nsec);
 }
 
-/* The running image: the sums so far downloaded into rgb (the caller's
- * host buffer for the final image) and divided by the samples, as the
- * final scaling does, then handed to run->image_fn. */
-static inline il_status il_cuda_running_image(const float *sum, size_t values, uint32_t done, uint32_t width,
-                                              uint32_t height, float *rgb, const il_cuda_run *run, il_error *err)
+/* The running image: the sums so far divided by the samples, as the final
+ * image is, downloaded into rgb (the caller's host buffer for the final
+ * image), then handed to run->image_fn. */
+static inline il_status il_cuda_running_image(const double *sum, float *out, size_t values, uint32_t done,
+                                              uint32_t width, uint32_t height, float *rgb, const il_cuda_run *run,
+                                              il_error *err)
 {
-    il_status st = il_cuda_check(cudaMemcpy(rgb, sum, sizeof(float) * values, cudaMemcpyDeviceToHost),
-                                 "downloading the running image", err);
+    il_status st = il_cuda_resolve(sum, out, values, done, rgb, "downloading the running image", err);
     if (st != IL_OK)
         return st;
-    float k = 1.0f / (float)done;
-    for (size_t i = 0; i < values; i++)
-        rgb[i] *= k;
     run->image_fn(rgb, width, height, done, run->image_user);
     return IL_OK;
 }
@@ -90,18 +103,22 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
                                            uint32_t batch, float *rgb, double *seconds, il_cuda_run *run,
                                            const struct timespec *t0, const char *what, il_error *err)
 {
-    float *sum = NULL;
+    double *sum = NULL;
+    float *out = NULL;
     unsigned long long *ray_total = NULL, rays = 0;
     size_t values = 3 * (size_t)width * height;
-    il_status st = il_cuda_check(cudaMalloc((void **)&sum, sizeof(float) * values), "allocating the image", err);
+    il_status st = il_cuda_check(cudaMalloc((void **)&sum, sizeof(double) * values), "allocating the image", err);
+    if (st == IL_OK)
+        st = il_cuda_check(cudaMalloc((void **)&out, sizeof(float) * values), "allocating the image", err);
     if (st == IL_OK)
         st = il_cuda_check(cudaMalloc((void **)&ray_total, sizeof *ray_total), "allocating the ray count", err);
     if (st == IL_OK)
-        st = il_cuda_check(cudaMemset(sum, 0, sizeof(float) * values), "cudaMemset", err);
+        st = il_cuda_check(cudaMemset(sum, 0, sizeof(double) * values), "cudaMemset", err);
     if (st == IL_OK)
         st = il_cuda_check(cudaMemset(ray_total, 0, sizeof *ray_total), "cudaMemset", err);
     if (st != IL_OK) {
         cudaFree(sum);
+        cudaFree(out);
         cudaFree(ray_total);
         return st;
     }
@@ -139,15 +156,12 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
         if (run->image_fn && run->image_every > 0.0 && go_on && done < spp && s >= next_image) {
             while (next_image <= s)
                 next_image += run->image_every;
-            st = il_cuda_running_image(sum, values, done, width, height, rgb, run, err);
+            st = il_cuda_running_image(sum, out, values, done, width, height, rgb, run, err);
         }
     }
     cudaEventRecord(e1);
     if (st == IL_OK) {
-        il_cuda_scale_kernel<<<(uint32_t)((values + 255) / 256), 256>>>(sum, values, 1.0f / (float)done);
-        if ((st = il_cuda_check(cudaDeviceSynchronize(), what, err)) == IL_OK &&
-            (st = il_cuda_check(cudaMemcpy(rgb, sum, sizeof(float) * values, cudaMemcpyDeviceToHost),
-                                "downloading the image", err)) == IL_OK)
+        if ((st = il_cuda_resolve(sum, out, values, done ? done : 1, rgb, "downloading the image", err)) == IL_OK)
             st = il_cuda_check(cudaMemcpy(&rays, ray_total, sizeof rays, cudaMemcpyDeviceToHost),
                                "downloading the ray count", err);
         float ms = 0.0f;
@@ -162,6 +176,7 @@ static il_status il_cuda_progressive_image(Sampler sample, uint32_t width, uint3
     cudaEventDestroy(e0);
     cudaEventDestroy(e1);
     cudaFree(sum);
+    cudaFree(out);
     cudaFree(ray_total);
     return st;
 }

@@ -10,7 +10,7 @@
  *   gather  photons[i] = slots[value[i]], then cell start/end where the
  *           sorted key changes (no atomics);
  *   render  one thread per pixel, one launch per batch of samples added
- *           into a float accumulator (progressive: short launches).
+ *           into a double accumulator (progressive: short launches).
  *
  * Plain cudaMalloc/cudaMemcpy; nothing returns to the host between the
  * steps but the stored-photon count. */

@@ -5,7 +5,8 @@
  * another way), and (b) the CPU path tracer il_render: the same mean
  * radiance within noise; the same for the Cornell box with a textured
  * panel and lit by an environment map.  Then the progressive render's stops (il_cuda_run):
- * by its progress callback and by its time limit.  Exits 77 (a skip for
+ * by its progress callback and by its time limit; and its sums over a
+ * million samples per pixel.  Exits 77 (a skip for
  * ctest) without a GPU or driver, as on CI. */
 #include <stdlib.h>
 #include <string.h>
@@ -133,6 +134,38 @@ static void stops(il_scene *s)
     free(ref);
 }
 
+/* The sums of a long render.  A camera facing a black emitter of radiance
+ * 0.1 sees exactly 0.1f in every sample, so each launch adds the same batch
+ * sum a (16 samples) to every pixel.  After 2^20 samples (65,536 launches)
+ * the mean must be the 16-sample image's, bit for bit: the double sum of
+ * 65,536 copies of a is exact.  A float sum is not: past 2^16 it rounds
+ * each a of about 1.6 to whole ulps (the same sums in float on the CPU end
+ * 6e-4 off), and the build that summed in float failed this check. */
+static void long_accumulation(void)
+{
+    il_error err = {0};
+    il_scene *s = new_scene();
+    il_material_desc d = {.type = IL_MATERIAL_DIFFUSE, .diffuse = v3s(0.0f), .emission = v3s(0.1f)};
+    uint32_t m = add_material(s, d);
+    add_quad(s, v3(0, 0, -1), v3(10, 0, 0), v3(0, 10, 0), m);
+    set_camera(s, v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 40.0f);
+    commit(s);
+    enum { side = 8, values = 3 * side * side };
+    float ref[values], rgb[values];
+    CHECK_OK(il_cuda_render_pt(s, side, side, 16, 8, 3, ref, NULL, &err), &err);
+    il_cuda_run run = {0};
+    CHECK_OK(il_cuda_render_pt(s, side, side, 1u << 20, 8, 3, rgb, &run, &err), &err);
+    int differ = 0;
+    for (int i = 0; i < values; i++)
+        differ += rgb[i] != ref[i];
+    printf("2^20 spp of a constant 0.1: %u spp done, pixel 0 %.9g (16 spp: %.9g), %d of %d values differ\n",
+           run.spp_done, (double)rgb[0], (double)ref[0], differ, (int)values);
+    CHECK(run.spp_done == 1u << 20);
+    CHECK(differ == 0);
+    CHECK_REL((double)ref[0], 0.1, 1e-6);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     if (cuda_test_require_gpu() != 0)
@@ -143,6 +176,7 @@ int main(void)
     compare(s);
     stops(s);
     il_scene_release(s);
+    long_accumulation();
 
     /* The Cornell box with the Stanford dragon (47,806 triangles). */
     s = load_committed(IL_SOURCE_DIR "/bench/scenes/cornell-dragon.json");
