@@ -440,13 +440,13 @@ typedef enum il_hr_phase {
  * after every iteration. */
 typedef struct il_hr_progress {
     il_hr_phase phase;
-    uint32_t iterations;       /* iterations done (refine, gather, push-pull) */
+    uint32_t iterations;       /* iterations done (refine, then sweeps of gather
+                                  and push-pull) */
     uint32_t roots_done;       /* LINKING, REFINING: patches whose links are made
                                   or refined in this phase so far */
     uint32_t num_roots;        /* input polygons (quadtree roots) */
     double energy_change;      /* ITERATED: the relative change of the reflected
-                                  energy, the test against energy_eps (1 after
-                                  the first iteration) */
+                                  energy in this iteration (1 after the first) */
     double seconds;            /* since the solve started */
 } il_hr_progress;
 
@@ -468,10 +468,13 @@ typedef struct il_hr_desc {
     float area_eps;            /* ... and the larger element's area exceeds this
                                   fraction of the scene's bounding-box diagonal
                                   squared; 0 means 2000 / 1700^2 (SPLASH-2's room) */
-    float energy_eps;          /* stop when the relative change of total energy
-                                  falls below; 0 means 0.005 */
+    float energy_eps;          /* stop when what is left of the reflected energy,
+                                  estimated from its last two changes, falls
+                                  below this fraction of it; 0 means 0.005 */
     uint32_t vis_rays;         /* visibility rays per link; 0 means 16 */
-    uint32_t max_iterations;   /* 0 means 100 */
+    uint32_t max_iterations;   /* refinements, each followed by gather +
+                                  push-pull sweeps until the links' system
+                                  meets energy_eps (at most 64); 0 means 100 */
     il_hr_step_fn on_step;     /* progress and stop; NULL: none (not called when
                                   the render is split across processes) */
     void *on_step_user;
@@ -482,7 +485,8 @@ typedef struct il_hr_stats {
     uint64_t elements;         /* all quadtree nodes */
     uint64_t leaves;
     uint64_t links;
-    uint32_t iterations;
+    uint32_t iterations;       /* refinements, each followed by sweeps */
+    uint32_t sweeps;           /* gather + push-pull sweeps, all iterations */
     uint64_t visibility_rays;
     double seconds_setup;      /* patches, initial links */
     double seconds_refine;     /* refinement + visibility, all iterations */
@@ -491,7 +495,7 @@ typedef struct il_hr_stats {
     double seconds_render;
     uint64_t peak_bytes;       /* pools of elements, links and visibility */
     bool stopped;              /* il_hr_desc.on_step asked the solve to stop */
-    bool converged;            /* the energy's change fell below energy_eps (or
+    bool converged;            /* what is left fell below energy_eps (or
                                   there was no light to solve); false when
                                   max_iterations or a stop ended the solve */
     double energy_change;      /* the last iteration's relative change of the

@@ -18,12 +18,13 @@ const char cli_hr_help[] =
     "  --area-eps X           ... and the larger element's area > X * (the scene's\n"
     "                         bounding-box diagonal)^2, 1e-9 to 1 (default 6.92e-4,\n"
     "                         SPLASH-2's 2000 in a room about 1700 units wide)\n"
-    "  --energy-eps X         stop when the relative change of total energy < X,\n"
-    "                         1e-9 to 1 (default 0.005)\n"
+    "  --energy-eps X         stop when what is left of the reflected energy,\n"
+    "                         estimated from its last changes, < X of it, 1e-9\n"
+    "                         to 1 (default 0.005)\n"
     "  --vis-rays N           visibility rays per link, 1 to 4096 (default 16; with\n"
     "                         16, 64, 256, ... a link may settle after 4)\n"
-    "  --max-iterations N     at most N gather + push-pull iterations, 1 to 100000\n"
-    "                         (default 100)\n";
+    "  --max-iterations N     at most N iterations, each a refinement and then\n"
+    "                         gather + push-pull sweeps, 1 to 100000 (default 100)\n";
 
 bool cli_hr_option(int argc, char **argv, int *i, cli_hr_options *o, int *rc)
 {
@@ -99,6 +100,7 @@ void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
     cJSON_AddNumberToObject(r, "leaves", (double)s->leaves);
     cJSON_AddNumberToObject(r, "links", (double)s->links);
     cJSON_AddNumberToObject(r, "iterations", s->iterations);
+    cJSON_AddNumberToObject(r, "sweeps", s->sweeps);
     cJSON_AddNumberToObject(r, "visibility_rays", (double)s->visibility_rays);
     cJSON_AddNumberToObject(r, "seconds_setup", s->seconds_setup);
     cJSON_AddNumberToObject(r, "seconds_refine", s->seconds_refine);
@@ -114,11 +116,11 @@ void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
 void cli_hr_summary(const il_hr_stats *s)
 {
     fprintf(stderr,
-            "illum: hr: %u patches, %llu elements, %llu links, %u iterations, %llu visibility rays "
-            "(setup %.2f s, refine %.2f s, gather %.2f s, average %.2f s, render %.2f s, "
+            "illum: hr: %u patches, %llu elements, %llu links, %u iterations, %u sweeps, %llu visibility "
+            "rays (setup %.2f s, refine %.2f s, gather %.2f s, average %.2f s, render %.2f s, "
             "%.1f MB)\n",
             s->patches, (unsigned long long)s->elements, (unsigned long long)s->links,
-            s->iterations, (unsigned long long)s->visibility_rays, s->seconds_setup,
+            s->iterations, s->sweeps, (unsigned long long)s->visibility_rays, s->seconds_setup,
             s->seconds_refine, s->seconds_gather, s->seconds_average, s->seconds_render,
             (double)s->peak_bytes / (1024.0 * 1024.0));
     if (!s->converged && !s->stopped)

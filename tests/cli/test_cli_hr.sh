@@ -36,12 +36,15 @@ grep -q "mean_luminance  0  0" out.txt && fail "hr image is black"
 # Coarser epsilons give fewer elements (the options reach the solver).
 expect_exit 0 "render coarse" -- "$ILLUM" render office --method hr --bf-eps 0.5 --area-eps 0.05 \
     --vis-rays 4 --max-iterations 3 --width 8 --height 8 --spp 1 -q -o coarse.exr --stats coarse.json
-# Three iterations are not enough to converge: the stats and a warning say so.
-checks=$((checks + 1))
-grep -q '"converged":[[:space:]]*false' coarse.json || fail "coarse.json: converged is not false"
+# One iteration (one refinement) is not enough to converge: the stats and a
+# warning say so.
 expect_exit 0 "render one iteration" -- "$ILLUM" render office --method hr --vis-rays 4 --max-iterations 1 \
-    --width 8 --height 8 --spp 1 -o one.exr
+    --width 8 --height 8 --spp 1 -o one.exr --stats one.json
 expect_stderr "hr: not converged after 1 iteration" "render one iteration"
+checks=$((checks + 1))
+grep -q '"converged":[[:space:]]*false' one.json || fail "one.json: converged is not false"
+checks=$((checks + 1))
+grep -Eq '"sweeps":[[:space:]]*[1-9]' one.json || fail "one.json: no sweeps"
 elements() { sed -n 's/.*"elements":[[:space:]]*\([0-9]*\).*/\1/p' "$1" | head -1; }
 checks=$((checks + 1))
 [ "$(elements coarse.json)" -lt "$(elements office.json)" ] || \

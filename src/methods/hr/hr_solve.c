@@ -1,7 +1,12 @@
 /* The hierarchical radiosity solve (hr.h): roots, initial links, then
- * iterations of refinement, gather and push-pull until the relative change
- * of the reflected energy sum(A lum(B - Le)) falls below energy_eps
- * (SPLASH-2's test on the total energy, less the constant emission).  Gathering is Jacobi-style: every element gathers from
+ * iterations of a refinement followed by sweeps of gather and push-pull,
+ * until what is left of the reflected energy sum(A lum(B - Le)) falls
+ * below energy_eps of it (see energy_left).  An iteration sweeps until the
+ * system on its links is solved to that test (at most IL_HR_MAX_SWEEPS
+ * sweeps): a sweep costs little beside a refinement, and one sweep per
+ * refinement, SPLASH-2's order, took about ln(eps) / ln(rho) refinements in
+ * a room of albedo rho (48 at 0.95).  Gathering is Jacobi-style: every
+ * element gathers from
  * the radiances of the previous push-pull, so the order of tasks does not
  * matter.
  *
@@ -22,6 +27,26 @@
 #include "methods/distrib.h"
 #include "methods/hr/hr.h"
 #include "methods/patch_direct.h"
+
+/* What is left of the energy, from its last two changes d1 then d2.  The
+ * iterations approach the solution geometrically, E_inf - E_k = d2 q / (1 -
+ * q) with q = d2 / d1 (the reflectance the light sees), which exceeds the
+ * last change itself once q > 1/2: SPLASH-2's test, the last change below
+ * energy_eps, stopped a closed room of albedo 0.95 with 9% of its
+ * reflected energy missing (5.5% of its image).  So the larger of the two;
+ * a change that did not shrink leaves an unknown amount (infinity). */
+static double energy_left(double d1, double d2)
+{
+    if (d2 <= 0.0)
+        return 0.0;
+    if (!(d2 < d1))
+        return INFINITY;
+    double q = d2 / d1;
+    return fmax(d2, d2 * q / (1.0 - q));
+}
+
+/* At most this many gather + push-pull sweeps per iteration. */
+#define IL_HR_MAX_SWEEPS 64u
 
 static void count_tree(const il_hr_elem *e, uint64_t *elems, uint64_t *leaves, uint64_t *links)
 {
@@ -256,7 +281,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     }
     int nt = set->threads;
     uint32_t n = s->num_roots;
-    double prev = total_energy(s);
+    double prev = total_energy(s), prev_delta = 0.0;
     bool converged = s->b_max <= 0.0f; /* no light: nothing to solve */
     for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f && !il_hr_stopping(s);
          it++) {
@@ -292,22 +317,36 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
          * yet, so none is gathered (il_hr_step_fn in illum.h). */
         if (it == 0 && il_hr_stopping(s))
             break;
+        /* Sweeps until the links' system is solved (the same test as the
+         * iterations', on the sweeps' changes) or a stop is asked. */
+        double energy = prev, sweep_prev = prev, sweep_delta = 0.0;
+        bool solved = false;
+        for (uint32_t k = 0; k < IL_HR_MAX_SWEEPS && !solved && !(k > 0 && il_hr_stopping(s)); k++) {
 #pragma omp parallel num_threads(nt)
-        {
+            {
 #pragma omp for schedule(dynamic, 1)
-            for (uint32_t i = 0; i < n; i++)
-                il_hr_gather_root(&s->roots[s->order[i]]);
+                for (uint32_t i = 0; i < n; i++)
+                    il_hr_gather_root(&s->roots[s->order[i]]);
 #pragma omp for schedule(dynamic, 1)
-            for (uint32_t i = 0; i < n; i++)
-                il_hr_push_pull_root(&s->roots[s->order[i]]);
+                for (uint32_t i = 0; i < n; i++)
+                    il_hr_push_pull_root(&s->roots[s->order[i]]);
+            }
+            st->sweeps++;
+            energy = total_energy(s);
+            double d = fabs(energy - sweep_prev);
+            solved = k > 0 && energy_left(sweep_delta, d) <= set->energy_eps * fabs(energy);
+            sweep_delta = d;
+            sweep_prev = energy;
         }
         st->seconds_gather += omp_get_wtime() - t2;
         st->iterations = it + 1;
-        double energy = total_energy(s);
-        double change = it == 0 ? 1.0 : energy != 0.0 ? fabs(energy - prev) / fabs(energy) : 0.0;
-        converged = it > 0 && fabs(energy - prev) <= set->energy_eps * fabs(energy);
+        double delta = fabs(energy - prev);
+        double change = it == 0 ? 1.0 : energy != 0.0 ? delta / fabs(energy) : 0.0;
+        /* A stop cut this iteration's refinement or sweeps short: not converged. */
+        converged = it > 0 && !il_hr_stopping(s) && energy_left(prev_delta, delta) <= set->energy_eps * fabs(energy);
         st->energy_change = change;
         prev = energy;
+        prev_delta = delta;
         il_hr_watch_phase(s, IL_HR_ITERATED, it + 1, change);
         if (converged)
             break;
