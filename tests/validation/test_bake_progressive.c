@@ -4,7 +4,8 @@
  * away from the final solution in mean luminance and the last within 2% of
  * it (the solve converges; radiosity's looks carry the ambient term), the
  * result equals il_bake's bit for bit, and a callback that returns false
- * stops the solve early with a result more than 1% away from the full one.
+ * at the first look stops the solve early with a result more than 1% away
+ * from the full one.
  * Every baked triangle names its patch (il_bake_mesh.patches): as many
  * distinct patches as the solver reports, the triangles of one patch in
  * one plane. */
@@ -183,13 +184,15 @@ static void check_method(const il_scene *s, il_render_desc *rd, const char *name
     release_copy(&w.first);
     check_patches(plain, fixed_mesh ? plain->stats.radiosity.num_patches : plain->stats.hr.leaves, name);
 
-    /* Stopped after the second look: a valid, darker result. */
-    watch ws = {.stop_after = 2};
+    /* Stopped after the first look: a valid result, away from the full one
+     * (hr takes few looks: an iteration sweeps its links' system solved,
+     * so its second look can be its last). */
+    watch ws = {.stop_after = 1};
     CHECK_OK(il_bake_progressive(s, rd, on_step, &ws, &stopped, &g_err), &g_err);
-    CHECK(ws.calls == 2);
+    CHECK(ws.calls == 1);
     if (stopped) {
         double ls = mean_luminance(stopped);
-        printf("%s: stopped after 2 looks: mean luminance %.5f\n", name, ls);
+        printf("%s: stopped after 1 look: mean luminance %.5f\n", name, ls);
         CHECK(ls > 0.0 && fabs(ls - lf) > 0.01 * lf);
     }
     release_copy(&ws.first);

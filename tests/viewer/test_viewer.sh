@@ -275,7 +275,10 @@ expect_stdout "hr mesh ([0-9]* triangles), [1-9][0-9]* looks" "hr mesh info line
 mean_close hrmesh.png hr.png 0.01 "view hr mesh vs render hr"
 expect_exit 0 "hr mesh pixels" -- "$ILLUM" compare hrmesh.png hr.png --max-rmse 0.02
 expect_file hrlook.png "hr first look"
-mean_far hrlook.png hrmesh.png 0.1 "hr first look (after the first iteration) vs final mesh"
+# hr's first look comes after its first iteration, whose sweeps solve the
+# first links' system: 5% from the final mesh (20% when an iteration was
+# one sweep).
+mean_far hrlook.png hrmesh.png 0.03 "hr first look (after the first iteration) vs final mesh"
 # Key B on hr: the elements' (leaves') outlines.
 display "$ILLUM" view cornell "${hr[@]}" --keys B --frames 2 --screenshot hrpatch.png >out.txt 2>err.txt ||
     { fail "view hr patch boundaries: exit $?"; cat err.txt >&2; }
