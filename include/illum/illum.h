@@ -500,6 +500,9 @@ typedef struct il_hr_stats {
                                   max_iterations or a stop ended the solve */
     double energy_change;      /* the last iteration's relative change of the
                                   total energy (1 after the first) */
+    bool stalled;              /* the solve stopped because its sweeps no longer
+                                  converged: light that cannot leave the scene
+                                  (a closed room of albedo 1) */
 } il_hr_stats;
 
 /* ---------------------------------------------------------- photon mapping */

@@ -110,6 +110,7 @@ void cli_hr_stats_json(cJSON *parent, const il_hr_stats *s)
     cJSON_AddNumberToObject(r, "peak_bytes", (double)s->peak_bytes);
     cJSON_AddBoolToObject(r, "stopped", s->stopped);
     cJSON_AddBoolToObject(r, "converged", s->converged);
+    cJSON_AddBoolToObject(r, "stalled", s->stalled);
     cJSON_AddNumberToObject(r, "energy_change", s->energy_change);
 }
 
@@ -123,10 +124,15 @@ void cli_hr_summary(const il_hr_stats *s)
             s->iterations, s->sweeps, (unsigned long long)s->visibility_rays, s->seconds_setup,
             s->seconds_refine, s->seconds_gather, s->seconds_average, s->seconds_render,
             (double)s->peak_bytes / (1024.0 * 1024.0));
-    if (!s->converged && !s->stopped)
+    if (s->stalled)
+        fprintf(stderr,
+                "illum: warning: hr: the solve stopped converging (%u iteration%s, %u sweeps): light "
+                "that cannot leave the scene, such as a closed room of albedo 1, has no finite "
+                "solution; the image shows the light of those sweeps\n",
+                s->iterations, s->iterations == 1 ? "" : "s", s->sweeps);
+    else if (!s->converged && !s->stopped)
         fprintf(stderr,
                 "illum: warning: hr: not converged after %u iteration%s (the energy still changed "
-                "by %.3g%%): raise --max-iterations; light that cannot leave the scene, such as a "
-                "closed room of albedo 1, never converges\n",
+                "by %.3g%%): raise --max-iterations\n",
                 s->iterations, s->iterations == 1 ? "" : "s", 100.0 * s->energy_change);
 }

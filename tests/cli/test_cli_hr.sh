@@ -45,6 +45,20 @@ checks=$((checks + 1))
 grep -q '"converged":[[:space:]]*false' one.json || fail "one.json: converged is not false"
 checks=$((checks + 1))
 grep -Eq '"sweeps":[[:space:]]*[1-9]' one.json || fail "one.json: no sweeps"
+# A closed white room has no finite solution: the solve stops as stalled and
+# says so, and the image is still written.
+echo '{"materials": {"w": {"diffuse": 1}, "e": {"diffuse": 1, "emission": 5}},
+       "meshes": [{"shape": "box", "size": 4, "flip": true, "material": "w"},
+                  {"shape": "box", "size": 0.5, "material": "e"}],
+       "camera": {"position": [0, 1, 1.9], "target": [0, 0, 0]}}' > white.json
+expect_exit 0 "hr closed white room" -- "$ILLUM" render white.json --method hr --bf-eps 0.05 --area-eps 0.01 \
+    --vis-rays 4 --width 8 --height 8 --spp 1 -o white.exr --stats white.json.stats
+expect_stderr "hr: the solve stopped converging" "hr closed white room"
+expect_file white.exr "hr closed white room"
+checks=$((checks + 1))
+grep -q '"stalled":[[:space:]]*true' white.json.stats || fail "white.json.stats: stalled is not true"
+checks=$((checks + 1))
+grep -q '"stalled":[[:space:]]*false' office.json || fail "office.json: stalled is not false"
 elements() { sed -n 's/.*"elements":[[:space:]]*\([0-9]*\).*/\1/p' "$1" | head -1; }
 checks=$((checks + 1))
 [ "$(elements coarse.json)" -lt "$(elements office.json)" ] || \

@@ -8,8 +8,9 @@
  * input polygons, quads kept whole.  Then a bright box (rho 0.95) at the
  * default energy_eps: each wall within 1% of E/(1-rho) = 20 E, where
  * SPLASH-2's test (the last change below energy_eps) stopped 8.1% low, after
- * 48 iterations. */
+ * 48 iterations; and a box of albedo 1 stops as stalled. */
 #include "hr_scenes.h"
+#include "methods/radiosity/rad_stall.h"
 
 static void leaf_range(const il_hr_elem *e, void *user)
 {
@@ -51,6 +52,29 @@ static void bright_box(void)
                100.0 * (r[3 + 2 * w] / r[4 + 2 * w] / expect - 1.0));
         CHECK_REL(r[3 + 2 * w] / r[4 + 2 * w], expect, 0.01);
     }
+    hr_case_free(&c);
+    il_scene_release(s);
+}
+
+/* Albedo 1: no light leaves, every sweep adds as much as the last; the
+ * solve must stop by itself as stalled (radiosity's test, rad_stall.h),
+ * not run its 100 iterations of up to 64 sweeps. */
+static void white_box(void)
+{
+    il_scene *s = new_scene();
+    uint32_t m = diffuse_material(s, v3s(1.0f), v3s(1.0f));
+    const uint32_t mat[6] = {m, m, m, m, m, m};
+    add_box_room(s, 3.0f, mat);
+    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
+    il_hr_desc hd = {.bf_eps = 0.05f, .area_eps = 0.01f, .vis_rays = 4};
+    il_render_desc rd = {.method = IL_METHOD_HR, .threads = 2, .hr = &hd};
+    hr_case c;
+    CHECK_OK(hr_case_run(s, &rd, &c), &g_err);
+    const il_hr_stats *st = &c.solver.stats;
+    printf("white box: stalled %d, converged %d, %u iterations, %u sweeps\n", (int)st->stalled,
+           (int)st->converged, st->iterations, st->sweeps);
+    CHECK(st->stalled && !st->converged && !st->stopped);
+    CHECK(st->sweeps <= 3 * IL_RAD_STALL_WINDOW * st->iterations);
     hr_case_free(&c);
     il_scene_release(s);
 }
@@ -106,5 +130,6 @@ int main(void)
     il_film_release(film);
     il_scene_release(s);
     bright_box();
+    white_box();
     return check_report();
 }

@@ -27,6 +27,7 @@
 #include "methods/distrib.h"
 #include "methods/hr/hr.h"
 #include "methods/patch_direct.h"
+#include "methods/radiosity/rad_stall.h"
 
 /* What is left of the energy, from its last two changes d1 then d2.  The
  * iterations approach the solution geometrically, E_inf - E_k = d2 q / (1 -
@@ -283,6 +284,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     uint32_t n = s->num_roots;
     double prev = total_energy(s), prev_delta = 0.0;
     bool converged = s->b_max <= 0.0f; /* no light: nothing to solve */
+    bool stalled = false;
     for (uint32_t it = 0; it < set->max_iterations && s->b_max > 0.0f && !il_hr_stopping(s);
          it++) {
         il_hr_watch_phase(s, IL_HR_REFINING, it, 0.0);
@@ -321,7 +323,12 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
          * iterations', on the sweeps' changes) or a stop is asked. */
         double energy = prev, sweep_prev = prev, sweep_delta = 0.0;
         bool solved = false;
-        for (uint32_t k = 0; k < IL_HR_MAX_SWEEPS && !solved && !(k > 0 && il_hr_stopping(s)); k++) {
+        /* Light that cannot leave (a closed room of albedo 1) makes every
+         * sweep add as much as the last: radiosity's stall test
+         * (rad_stall.h) on the sweeps' changes ends the solve. */
+        il_rad_stall stall;
+        il_rad_stall_start(&stall, 1);
+        for (uint32_t k = 0; k < IL_HR_MAX_SWEEPS && !solved && !stalled && !(k > 0 && il_hr_stopping(s)); k++) {
 #pragma omp parallel num_threads(nt)
             {
 #pragma omp for schedule(dynamic, 1)
@@ -335,6 +342,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
             energy = total_energy(s);
             double d = fabs(energy - sweep_prev);
             solved = k > 0 && energy_left(sweep_delta, d) <= set->energy_eps * fabs(energy);
+            stalled = !solved && il_rad_stalled(&stall, k + 1, d);
             sweep_delta = d;
             sweep_prev = energy;
         }
@@ -343,12 +351,13 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
         double delta = fabs(energy - prev);
         double change = it == 0 ? 1.0 : energy != 0.0 ? delta / fabs(energy) : 0.0;
         /* A stop cut this iteration's refinement or sweeps short: not converged. */
-        converged = it > 0 && !il_hr_stopping(s) && energy_left(prev_delta, delta) <= set->energy_eps * fabs(energy);
+        converged = it > 0 && !il_hr_stopping(s) && !stalled &&
+                    energy_left(prev_delta, delta) <= set->energy_eps * fabs(energy);
         st->energy_change = change;
         prev = energy;
         prev_delta = delta;
         il_hr_watch_phase(s, IL_HR_ITERATED, it + 1, change);
-        if (converged)
+        if (converged || stalled)
             break;
         if (set->on_iteration && !set->on_iteration(s, set->on_iteration_user))
             break;
@@ -364,6 +373,7 @@ il_status il_hr_solve(const il_scene *scene, const il_patch_mesh *mesh, const il
     st->elements = elems;
     st->stopped = il_hr_stopping(s) && !converged && st->iterations < set->max_iterations;
     st->converged = converged;
+    st->stalled = stalled;
     s->watch = NULL; /* it lived in this frame */
     st->leaves = leaves;
     st->links = links;
