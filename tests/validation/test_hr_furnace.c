@@ -23,25 +23,33 @@ static void leaf_range(const il_hr_elem *e, void *user)
     r[4 + 2 * e->root] += e->area;
 }
 
-/* A box of albedo 0.95 at the default energy_eps: the light bounces about
- * 20 times, and the solve must not stop while much of it is still to come
- * (hr_solve.c, energy_left). */
-static void bright_box(void)
+/* The 3 m box of albedo rho, every wall emitting E, solved with coarse
+ * links (the light is even: little to refine) at the default energy_eps. */
+static il_scene *coarse_box_run(float rho, float E, hr_case *c)
 {
-    const float rho = 0.95f, E = 1.0f;
     il_scene *s = new_scene();
     uint32_t m = diffuse_material(s, v3s(rho), v3s(E));
     const uint32_t mat[6] = {m, m, m, m, m, m};
     add_box_room(s, 3.0f, mat);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
-    /* Coarse links (the light is even: little to refine), the default
-     * energy_eps. */
     il_hr_desc hd = {.bf_eps = 0.05f, .area_eps = 0.01f, .vis_rays = 4};
     il_render_desc rd = {.method = IL_METHOD_HR, .threads = 2, .hr = &hd};
+    CHECK_OK(hr_case_run(s, &rd, c), &g_err);
+    printf("box of albedo %.2f: %u iterations, %u sweeps, converged %d, stalled %d\n", (double)rho,
+           c->solver.stats.iterations, c->solver.stats.sweeps, (int)c->solver.stats.converged,
+           (int)c->solver.stats.stalled);
+    return s;
+}
+
+/* A box of albedo 0.95: the light bounces about 20 times, and the solve
+ * must not stop while much of it is still to come (hr_solve.c,
+ * energy_left). */
+static void bright_box(void)
+{
+    const float rho = 0.95f, E = 1.0f;
     hr_case c;
-    CHECK_OK(hr_case_run(s, &rd, &c), &g_err);
+    il_scene *s = coarse_box_run(rho, E, &c);
     hr_print_stats("bright furnace", &c.solver.stats);
-    printf("bright furnace: %u iterations, %u sweeps\n", c.solver.stats.iterations, c.solver.stats.sweeps);
     CHECK(c.solver.stats.converged);
     double r[3 + 12] = {1e30, -1e30, 0};
     for (uint32_t i = 0; i < c.solver.num_roots; i++)
@@ -61,18 +69,9 @@ static void bright_box(void)
  * not run its 100 iterations of up to 64 sweeps. */
 static void white_box(void)
 {
-    il_scene *s = new_scene();
-    uint32_t m = diffuse_material(s, v3s(1.0f), v3s(1.0f));
-    const uint32_t mat[6] = {m, m, m, m, m, m};
-    add_box_room(s, 3.0f, mat);
-    CHECK_OK(il_scene_commit(s, &g_err), &g_err);
-    il_hr_desc hd = {.bf_eps = 0.05f, .area_eps = 0.01f, .vis_rays = 4};
-    il_render_desc rd = {.method = IL_METHOD_HR, .threads = 2, .hr = &hd};
     hr_case c;
-    CHECK_OK(hr_case_run(s, &rd, &c), &g_err);
+    il_scene *s = coarse_box_run(1.0f, 1.0f, &c);
     const il_hr_stats *st = &c.solver.stats;
-    printf("white box: stalled %d, converged %d, %u iterations, %u sweeps\n", (int)st->stalled,
-           (int)st->converged, st->iterations, st->sweeps);
     CHECK(st->stalled && !st->converged && !st->stopped);
     CHECK(st->sweeps <= 3 * IL_RAD_STALL_WINDOW * st->iterations);
     hr_case_free(&c);
