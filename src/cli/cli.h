@@ -45,6 +45,10 @@ int cli_require_scene(const char *cmd, const char *scene);
 /* The log callback that prints loader warnings ("illum: warning: ...") unless quiet. */
 void cli_log(il_log_level level, const char *message, void *user);
 
+/* The reason a radiosity or hr solve that stopped converging gives. */
+#define CLI_NO_FINITE_SOLUTION \
+    "light that cannot leave the scene, such as a closed room of albedo 1, has no finite solution"
+
 /* Exit status for an il_status. */
 int cli_exit_for(il_status st);
 

@@ -126,9 +126,8 @@ void cli_hr_summary(const il_hr_stats *s)
             (double)s->peak_bytes / (1024.0 * 1024.0));
     if (s->stalled)
         fprintf(stderr,
-                "illum: warning: hr: the solve stopped converging (%u iteration%s, %u sweeps): light "
-                "that cannot leave the scene, such as a closed room of albedo 1, has no finite "
-                "solution; the image shows the light of those sweeps\n",
+                "illum: warning: hr: the solve stopped converging (%u iteration%s, %u sweeps): "
+                CLI_NO_FINITE_SOLUTION "; the image shows the light of those sweeps\n",
                 s->iterations, s->iterations == 1 ? "" : "s", s->sweeps);
     else if (!s->converged && !s->stopped)
         fprintf(stderr,

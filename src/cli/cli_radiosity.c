@@ -143,8 +143,7 @@ void cli_radiosity_summary(const il_radiosity_stats *s)
     if (s->stalled)
         fprintf(stderr,
                 "illum: warning: radiosity: the solve stopped converging (unshot %.3g%% after %u "
-                "steps): light that cannot leave the scene, such as a closed room of albedo 1, has "
-                "no finite solution; the image shows the light of those steps\n",
+                "steps): " CLI_NO_FINITE_SOLUTION "; the image shows the light of those steps\n",
                 100.0 * s->unshot_fraction, s->steps);
 }
 

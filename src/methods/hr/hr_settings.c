@@ -8,7 +8,11 @@
  *   area_eps:  SPLASH-2's minimum area 2000 in a room about 1700 units wide
  *              becomes a fraction of the scene's bounding-box diagonal
  *              squared, 2000 / 1700^2, so the scene's units do not matter;
- *   energy_eps: relative change of the total energy, as SPLASH-2. */
+ *   energy_eps: SPLASH-2 stops when the relative change of the total energy
+ *              falls below it; we stop when what is left of the reflected
+ *              energy, estimated from its last two changes, does
+ *              (hr_solve.c, energy_left), as the last change alone stops
+ *              bright rooms early. */
 #include <math.h>
 #include <omp.h>
 #include <unistd.h>

@@ -1,6 +1,7 @@
 /* When a radiosity solve stops converging (rad_solve_shoot.c,
- * rad_solve_gather.c, and the GPU's and shared kernel's Jacobi sweeps in
- * kernel/kernel_radiosity_scene.c and cuda/radiosity_kernel.cu; plain C that
+ * rad_solve_gather.c, the GPU's and shared kernel's Jacobi sweeps in
+ * kernel/kernel_radiosity_scene.c and cuda/radiosity_kernel.cu, and the
+ * sweeps of hierarchical radiosity in methods/hr/hr_solve.c; plain C that
  * C++ compiles too). */
 #ifndef IL_METHODS_RADIOSITY_RAD_STALL_H
 #define IL_METHODS_RADIOSITY_RAD_STALL_H
