@@ -1,10 +1,10 @@
 /* Radiosity: time per phase and memory.
  *
- *   bench_radiosity SCENE [--subdiv L | --patch-size M] [--form-factors hemicube|raycast]
+ *   bench_radiosity SCENE [--subdiv L | --patch-size M] [--form-factors auto|hemicube|raycast]
  *                   [--hemicube-res N] [--ff-samples N] [--solver shooting|jacobi|gauss-seidel]
  *                   [--tolerance X] [--ff-cache-mb N] [--threads T] [--width W] [--height H] [--spp N]
  *
- * Solves one configuration (default: converged to 0.01, hemicube 256) and
+ * Solves one configuration (default: converged to 0.01, form factors auto) and
  * renders it (default 256x256, 4 spp), then prints one line: patches, steps,
  * the seconds of meshing, form factors, the whole solve (form factors
  * included), the render, and the peak resident memory of the process.  One
@@ -22,7 +22,9 @@ static bool radiosity_option(const char *a, const char *v, void *user)
     else if (!strcmp(a, "--patch-size"))
         rad->patch_size = (float)atof(v);
     else if (!strcmp(a, "--form-factors"))
-        rad->form_factors = !strcmp(v, "raycast") ? IL_FF_RAYCAST : IL_FF_HEMICUBE;
+        rad->form_factors = !strcmp(v, "raycast")    ? IL_FF_RAYCAST
+                            : !strcmp(v, "hemicube") ? IL_FF_HEMICUBE
+                                                     : IL_FF_AUTO;
     else if (!strcmp(a, "--hemicube-res"))
         rad->hemicube_resolution = (uint32_t)atoi(v);
     else if (!strcmp(a, "--ff-samples"))
@@ -45,7 +47,7 @@ int main(int argc, char **argv)
     il_radiosity_desc rad = {0};
     bench_run b = {.prog = "bench_radiosity",
                    .usage = "bench_radiosity SCENE [--subdiv L | --patch-size M] "
-                            "[--form-factors hemicube|raycast] [--hemicube-res N] [--ff-samples N] "
+                            "[--form-factors auto|hemicube|raycast] [--hemicube-res N] [--ff-samples N] "
                             "[--solver shooting|jacobi|gauss-seidel] [--tolerance X] "
                             "[--ff-cache-mb N] [--threads T] [--width W] [--height H] [--spp N]",
                    .width = 256,
@@ -64,7 +66,7 @@ int main(int argc, char **argv)
            "patches", "steps", "unshot", "mesh_s", "ff_s", "solve_s", "render_s", "total_s",
            "cache_MB", "peak_MB");
     printf("%-12s %-8s %7d %8u %6u %7.4f %8.3f %8.3f %8.3f %8.3f %8.3f %9.1f %9.1f\n", b.scene_name,
-           rad.form_factors == IL_FF_RAYCAST ? "raycast" : "hemicube", b.rd.threads, r->num_patches,
+           r->form_factors == IL_FF_RAYCAST ? "raycast" : "hemicube", b.rd.threads, r->num_patches,
            r->steps, r->unshot_fraction, r->seconds_mesh, r->seconds_form_factors, r->seconds_solve,
            r->seconds_render, r->seconds_mesh + r->seconds_solve,
            (double)r->cache_bytes / (1 << 20), (double)ru.ru_maxrss / 1024.0);

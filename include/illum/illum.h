@@ -362,7 +362,10 @@ typedef bool (*il_progress_fn)(const il_render_progress *progress, void *user);
 /* ------------------------------------------------------------- radiosity */
 
 typedef enum il_form_factor_method {
-    IL_FF_HEMICUBE = 0,      /* Cohen & Greenberg 1985: a z-buffered hemicube per patch */
+    IL_FF_AUTO = 0,          /* the hemicube while it has at least 4 pixels a patch
+                                (up to 3N^2/4 patches at resolution N: 49,152 at the
+                                default 256), ray-cast above (docs/radiosity.md) */
+    IL_FF_HEMICUBE,          /* Cohen & Greenberg 1985: a z-buffered hemicube per patch */
     IL_FF_RAYCAST            /* cosine-distributed rays from the patch, through Embree */
 } il_form_factor_method;
 
@@ -416,6 +419,9 @@ typedef struct il_radiosity_stats {
                                   longer fell: light that cannot leave the
                                   scene (a closed room of albedo 1) has no
                                   finite solution (docs/radiosity.md) */
+    il_form_factor_method form_factors; /* the back-end that computed the rows
+                                  (IL_FF_AUTO resolved; the last solve's with
+                                  adaptive subdivision) */
     double seconds_mesh;       /* meshing and its ray-casting structure */
     double seconds_form_factors; /* wall time spent computing form-factor rows */
     double seconds_solve;      /* the solve, form factors included */

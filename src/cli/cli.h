@@ -132,6 +132,8 @@ bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *
 void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
                                     const volatile sig_atomic_t *stop);
 void cli_radiosity_end_progress(cli_radiosity_options *o);
+/* "auto", "hemicube" or "raycast": the words of --form-factors. */
+const char *cli_form_factor_name(il_form_factor_method method);
 /* Adds the "radiosity" object of --stats to `parent`. */
 void cli_radiosity_stats_json(struct cJSON *parent, const il_radiosity_stats *stats);
 /* One line on stderr: patches, steps, unshot fraction, time per phase. */

@@ -183,6 +183,7 @@ static il_status render_radiosity(const il_scene *scene, const il_render_desc *d
         r->steps = steps;
         r->unshot_fraction = frac;
         r->stalled = cs.stalled;
+        r->form_factors = IL_FF_RAYCAST; /* the GPU's only back-end (docs/cuda.md) */
         r->seconds_form_factors = cs.seconds_form_factors;
         r->seconds_solve = cs.seconds_form_factors + cs.seconds_sweeps;
         r->rows_computed = mesh->num_patches;

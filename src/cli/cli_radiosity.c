@@ -16,8 +16,10 @@ const char cli_radiosity_help[] =
     "                         patches over the scene)\n"
     "  --subdiv LEVELS        uniform subdivision instead, 1 to 10 levels; each splits\n"
     "                         every triangle or quad into 4\n"
-    "  --form-factors hemicube|raycast\n"
-    "                         form-factor back-end (default hemicube)\n"
+    "  --form-factors auto|hemicube|raycast\n"
+    "                         form-factor back-end (default auto: the hemicube while\n"
+    "                         it has 4 pixels a patch, 49,152 patches at 256; raycast\n"
+    "                         above)\n"
     "  --hemicube-res N       hemicube pixels along the top face, 8 to 4096 (default 256)\n"
     "  --ff-samples N         raycast: rays per patch, 1 to 16777216 (default 4096)\n"
     "  --solver shooting|jacobi|gauss-seidel\n"
@@ -56,12 +58,14 @@ bool cli_radiosity_option(int argc, char **argv, int *i, cli_radiosity_options *
     } else if (!strcmp(name, "--subdiv")) {
         ok = cli_parse_u32(name, v, 1, 10, &d->subdivisions);
     } else if (!strcmp(name, "--form-factors")) {
-        if (!strcmp(v, "hemicube"))
+        if (!strcmp(v, "auto"))
+            d->form_factors = IL_FF_AUTO;
+        else if (!strcmp(v, "hemicube"))
             d->form_factors = IL_FF_HEMICUBE;
         else if (!strcmp(v, "raycast"))
             d->form_factors = IL_FF_RAYCAST;
         else {
-            cli_error("--form-factors: expected hemicube or raycast, got '%s'", v);
+            cli_error("--form-factors: expected auto, hemicube or raycast, got '%s'", v);
             ok = false;
         }
     } else if (!strcmp(name, "--hemicube-res")) {
@@ -116,6 +120,11 @@ void cli_radiosity_install_progress(cli_radiosity_options *o, bool quiet,
 
 void cli_radiosity_end_progress(cli_radiosity_options *o) { cli_solve_line_end(&o->line); }
 
+const char *cli_form_factor_name(il_form_factor_method m)
+{
+    return m == IL_FF_HEMICUBE ? "hemicube" : m == IL_FF_RAYCAST ? "raycast" : "auto";
+}
+
 void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
 {
     cJSON *r = cJSON_AddObjectToObject(parent, "radiosity");
@@ -124,6 +133,7 @@ void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
     cJSON_AddNumberToObject(r, "steps", s->steps);
     cJSON_AddNumberToObject(r, "unshot_fraction", s->unshot_fraction);
     cJSON_AddBoolToObject(r, "stalled", s->stalled);
+    cJSON_AddStringToObject(r, "form_factors", cli_form_factor_name(s->form_factors));
     cJSON_AddNumberToObject(r, "seconds_mesh", s->seconds_mesh);
     cJSON_AddNumberToObject(r, "seconds_form_factors", s->seconds_form_factors);
     cJSON_AddNumberToObject(r, "seconds_solve", s->seconds_solve);
@@ -137,9 +147,10 @@ void cli_radiosity_summary(const il_radiosity_stats *s)
 {
     fprintf(stderr,
             "illum: radiosity: %u patches, %u steps, unshot %.3g%% (mesh %.2f s, form factors "
-            "%.2f s, solve %.2f s, render %.2f s)\n",
+            "(%s) %.2f s, solve %.2f s, render %.2f s)\n",
             s->num_patches, s->steps, 100.0 * s->unshot_fraction, s->seconds_mesh,
-            s->seconds_form_factors, s->seconds_solve, s->seconds_render);
+            cli_form_factor_name(s->form_factors), s->seconds_form_factors, s->seconds_solve,
+            s->seconds_render);
     if (s->stalled)
         fprintf(stderr,
                 "illum: warning: radiosity: the solve stopped converging (unshot %.3g%% after %u "

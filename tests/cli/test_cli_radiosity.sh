@@ -21,7 +21,8 @@ expect_exit 0 "render simple-room" -- "$ILLUM" render simple-room $R --width 32 
     -q -o room.exr --stats room.json
 expect_file room.exr "render simple-room"
 for k in '"method":[[:space:]]*"radiosity"' '"radiosity":' '"patches":[[:space:]]*96' '"steps"' \
-         '"unshot_fraction"' '"seconds_form_factors"' '"rows_computed"' '"peak_bytes"'; do
+         '"unshot_fraction"' '"seconds_form_factors"' '"rows_computed"' '"peak_bytes"' \
+         '"form_factors":[[:space:]]*"hemicube"'; do
     checks=$((checks + 1))
     grep -q "$k" room.json || fail "room.json lacks $k"
 done
@@ -35,6 +36,18 @@ grep -q "mean_luminance  0  0" out.txt && fail "radiosity image is black"
 expect_exit 0 "raycast + jacobi" -- "$ILLUM" render shadow-room --method radiosity --subdiv 1 \
     --form-factors raycast --ff-samples 256 --solver jacobi --width 16 --height 16 --spp 1 -q -o shadow.pfm
 expect_file shadow.pfm "raycast + jacobi"
+
+# --form-factors auto (the default) takes ray-cast when the hemicube would
+# have fewer than 4 pixels a patch (3*32^2 pixels, simple-room's 1,536
+# patches at 4 levels) and says so in the summary and the stats.
+for ff in "" "--form-factors auto"; do
+    expect_exit 0 "auto form factors $ff" -- "$ILLUM" render simple-room --method radiosity --subdiv 4 \
+        --hemicube-res 32 $ff --ff-samples 64 --max-steps 1 --width 8 --height 8 --spp 1 -o big.pfm \
+        --stats big.json
+    expect_stderr "1536 patches.*form factors (raycast)" "auto form factors $ff"
+    checks=$((checks + 1))
+    grep -q '"form_factors":[[:space:]]*"raycast"' big.json || fail "big.json: auto did not choose raycast"
+done
 
 # A JSON scene's "render" block can choose the method; then radiosity options
 # need no --method on the command line.

@@ -1,6 +1,7 @@
 /* il_rad_settings_resolve: defaults, and every bad value an IL_ERR_INVALID
  * whose message names the option; the same errors through il_render and
- * il_bake; il_bake refuses methods that cannot bake. */
+ * il_bake; il_bake refuses methods that cannot bake; what IL_FF_AUTO
+ * chooses. */
 #include "rad_scenes.h"
 
 static il_scene *room(void)
@@ -18,7 +19,7 @@ static void test_defaults(const il_scene *s)
     /* Diffuse area of the room: 6 walls of 1 m^2 and the lamp 0.09 m^2. */
     CHECK_REL(set.patch_size, sqrt(6.09 / 4000.0), 1e-4);
     CHECK(set.subdivisions == 0);
-    CHECK(set.form_factors == IL_FF_HEMICUBE);
+    CHECK(set.form_factors == IL_FF_AUTO); /* resolved per mesh, below */
     CHECK(set.hemicube_resolution == 256);
     CHECK(set.ray_samples == 4096);
     CHECK(set.solver == IL_SOLVER_SHOOTING);
@@ -113,6 +114,47 @@ static void test_bad_values(il_scene *s)
     il_film_release(f2);
 }
 
+/* One shot of a solve, for the back-end it reports. */
+static il_radiosity_stats one_step(const il_scene *s, uint32_t subdivisions,
+                                   il_form_factor_method method, uint32_t hemicube_resolution)
+{
+    il_radiosity_desc rad = {.subdivisions = subdivisions, .form_factors = method,
+                             .hemicube_resolution = hemicube_resolution, .ray_samples = 64,
+                             .max_steps = 1};
+    il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .spp = 1, .radiosity = &rad};
+    il_film *film = NULL;
+    CHECK_OK(il_film_create(8, 8, &film, &g_err), &g_err);
+    il_render_stats st;
+    CHECK_OK(il_render(s, film, &rd, &st, &g_err), &g_err);
+    il_film_release(film);
+    return st.radiosity;
+}
+
+/* IL_FF_AUTO: the hemicube up to 3N^2/4 patches (4 of its 3N^2 pixels a
+ * patch), ray-cast above; an explicit choice is kept whatever the size. */
+static void test_auto_form_factors(const il_scene *s)
+{
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 0, 0) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 49152, 0) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 49153, 0) == IL_FF_RAYCAST);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 49152, 256) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 768, 32) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 769, 32) == IL_FF_RAYCAST);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, 12582912, 4096) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_AUTO, UINT32_MAX, 4096) == IL_FF_RAYCAST);
+    CHECK(il_ff_auto_method(IL_FF_HEMICUBE, UINT32_MAX, 8) == IL_FF_HEMICUBE);
+    CHECK(il_ff_auto_method(IL_FF_RAYCAST, 1, 0) == IL_FF_RAYCAST);
+
+    /* The room's 7 quads at 4 levels: 1,792 patches, more than the 1,728 of
+     * a 48-pixel hemicube and fewer than the 1,800 of a 49-pixel one. */
+    il_radiosity_stats a = one_step(s, 4, IL_FF_AUTO, 48);
+    CHECK(a.num_patches == 7 * 256 && a.form_factors == IL_FF_RAYCAST);
+    il_radiosity_stats b = one_step(s, 4, IL_FF_AUTO, 49);
+    CHECK(b.num_patches == 7 * 256 && b.form_factors == IL_FF_HEMICUBE);
+    CHECK(one_step(s, 4, IL_FF_HEMICUBE, 8).form_factors == IL_FF_HEMICUBE);
+    CHECK(one_step(s, 1, IL_FF_RAYCAST, 0).form_factors == IL_FF_RAYCAST);
+}
+
 /* A scene that is all mirror has no diffuse surface: a clear error. */
 static void test_no_diffuse(void)
 {
@@ -137,6 +179,7 @@ int main(void)
     il_scene *s = room();
     test_defaults(s);
     test_bad_values(s);
+    test_auto_form_factors(s);
     il_scene_release(s);
     test_no_diffuse();
     return check_report();

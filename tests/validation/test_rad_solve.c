@@ -163,12 +163,13 @@ static void test_determinism(void)
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
     const il_radiosity_solver solvers[3] = {IL_SOLVER_SHOOTING, IL_SOLVER_JACOBI,
                                             IL_SOLVER_GAUSS_SEIDEL};
+    const il_form_factor_method methods[2] = {IL_FF_HEMICUBE, IL_FF_RAYCAST};
     for (int k = 0; k < 3; k++) {
         for (int ffm = 0; ffm < 2; ffm++) {
             rad_case a, b, tiny;
             il_radiosity_desc rad;
             il_render_desc rd = room_desc(&rad, solvers[k], 1);
-            rad.form_factors = (il_form_factor_method)ffm;
+            rad.form_factors = methods[ffm];
             rad.hemicube_resolution = 64;
             rad.tolerance = 1e-3f;
             CHECK_OK(rad_case_run(s, &rd, 0, &a), &g_err);

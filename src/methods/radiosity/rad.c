@@ -35,6 +35,8 @@ static il_status solve_mesh(const il_scene *scene, const il_patch_mesh *mesh,
         double t1 = omp_get_wtime();
         st = il_ff_create(mesh, settings, &ff, err);
         stats->seconds_form_factors += omp_get_wtime() - t1;
+        if (st == IL_OK)
+            stats->form_factors = il_ff_method(ff);
     }
     if (st == IL_OK)
         st = il_ff_cache_create(mesh->num_patches, settings->ff_cache_bytes, &cache, err);

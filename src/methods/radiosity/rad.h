@@ -78,8 +78,13 @@ typedef struct il_ff_row {
 typedef struct il_ff il_ff;          /* shared and read-only once created */
 typedef struct il_ff_work il_ff_work; /* one per thread: buffers of one row */
 
+/* The back-end for `method` on a mesh of num_patches: IL_FF_AUTO resolved
+ * (hemicube_resolution 0 means the default 256). */
+il_form_factor_method il_ff_auto_method(il_form_factor_method method, uint32_t num_patches,
+                                        uint32_t hemicube_resolution);
 il_status il_ff_create(const il_patch_mesh *mesh, const il_rad_settings *settings, il_ff **out,
                        il_error *err);
+il_form_factor_method il_ff_method(const il_ff *ff); /* never IL_FF_AUTO */
 void il_ff_release(il_ff *ff);
 il_status il_ff_work_create(const il_ff *ff, il_ff_work **out, il_error *err);
 void il_ff_work_release(il_ff_work *work);

@@ -62,7 +62,7 @@ il_status il_rad_settings_resolve(const il_scene *scene, const il_render_desc *d
                        r.subdivisions, IL_RAD_MAX_SUBDIVISIONS);
     if ((unsigned)r.form_factors > IL_FF_RAYCAST)
         return il_fail(err, IL_ERR_INVALID,
-                       "radiosity: unknown form_factors method %d (hemicube or raycast)",
+                       "radiosity: unknown form_factors method %d (auto, hemicube or raycast)",
                        (int)r.form_factors);
     if (r.hemicube_resolution != 0 && (r.hemicube_resolution < IL_RAD_MIN_HEMICUBE ||
                                        r.hemicube_resolution > IL_RAD_MAX_HEMICUBE))
