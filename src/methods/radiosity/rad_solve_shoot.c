@@ -9,10 +9,10 @@
  * and sets dL_i = 0.  The patches with the most unshot power A_i lum(dL_i)
  * go first (section 3.1, "sorting").
  *
- * Parallelism and determinism: each step takes a fixed batch of
- * IL_RAD_SHOOT_BATCH shooters (whatever the thread count), computes their
- * rows in parallel, then shoots them one after another in order, each with
- * its unshot radiance at that moment.  So the result does not depend on the
+ * Parallelism and determinism: each step takes a batch of shooters whose
+ * size depends on the patch count only (shoot_batch), computes their rows
+ * in parallel, then shoots them one after another in order, each with its
+ * unshot radiance at that moment.  So the result does not depend on the
  * number of threads.
  *
  * Display (section 3.2, "ambient term"): ambient = R * sum_i(dL_i A_i) /
@@ -28,10 +28,25 @@
 #include "core/error.h"
 #include "methods/radiosity/rad_solve.h"
 
-#define IL_RAD_SHOOT_BATCH 8u
+#define IL_RAD_SHOOT_BATCH_MIN 8u
+#define IL_RAD_SHOOT_BATCH_MAX 64u
+
+/* Shooters per step: 8, and one per 4096 patches above 32,768, up to 64.
+ * Each step scans every patch (and fills the display array), one thread's
+ * work while the others wait; on a large mesh a batch of 8 rows leaves that
+ * serial scan a large share of the time (15% of the atrium's 150,848-patch
+ * solve, with the other thread idle meanwhile). */
+static uint32_t shoot_batch(uint32_t num_patches)
+{
+    uint32_t b = num_patches / 4096u;
+    return b < IL_RAD_SHOOT_BATCH_MIN ? IL_RAD_SHOOT_BATCH_MIN
+         : b > IL_RAD_SHOOT_BATCH_MAX ? IL_RAD_SHOOT_BATCH_MAX
+                                      : b;
+}
 
 typedef struct shoot_scan {
-    uint32_t shooter[IL_RAD_SHOOT_BATCH]; /* largest unshot power first */
+    uint32_t shooter[IL_RAD_SHOOT_BATCH_MAX]; /* largest unshot power first */
+    uint32_t batch;                       /* shooters wanted (shoot_batch) */
     uint32_t count;
     double unshot_power;                  /* sum_i A_i lum(dL_i) */
     il_vec3 unshot_sum;                   /* sum_i A_i dL_i per channel */
@@ -41,7 +56,8 @@ typedef struct shoot_scan {
  * most of it (ties go to the lower index, so the choice is deterministic). */
 static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, shoot_scan *s)
 {
-    double top[IL_RAD_SHOOT_BATCH];
+    double top[IL_RAD_SHOOT_BATCH_MAX];
+    uint32_t batch = s->batch;
     double sum_r = 0.0, sum_g = 0.0, sum_b = 0.0, total = 0.0;
     s->count = 0;
     for (uint32_t i = 0; i < mesh->num_patches; i++) {
@@ -54,10 +70,10 @@ static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, shoot_
         total += p;
         if (!(p > 0.0))
             continue;
-        if (s->count == IL_RAD_SHOOT_BATCH && !(p > top[IL_RAD_SHOOT_BATCH - 1]))
+        if (s->count == batch && !(p > top[batch - 1]))
             continue;
         /* Insertion into the sorted list of the best. */
-        uint32_t k = s->count < IL_RAD_SHOOT_BATCH ? s->count++ : IL_RAD_SHOOT_BATCH - 1;
+        uint32_t k = s->count < batch ? s->count++ : batch - 1;
         while (k > 0 && p > top[k - 1]) {
             top[k] = top[k - 1];
             s->shooter[k] = s->shooter[k - 1];
@@ -138,14 +154,14 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
             return IL_ERR_MEMORY;
     }
     il_rad_rows rows;
-    il_status st = il_rad_rows_init(&rows, ff, IL_RAD_SHOOT_BATCH, settings->threads, err);
+    shoot_scan scan = {.batch = shoot_batch(n)};
+    il_status st = il_rad_rows_init(&rows, ff, scan.batch, settings->threads, err);
     if (st != IL_OK) {
         free(display);
         return st;
     }
     rows.distrib = settings->distrib;
 
-    shoot_scan scan;
     scan_unshot(mesh, sol->unshot, &scan);
     double frac = p0 > 0.0 ? scan.unshot_power / p0 : 0.0;
     uint32_t steps = 0;
