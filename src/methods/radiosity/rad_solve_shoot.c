@@ -31,7 +31,8 @@
 #define IL_RAD_SHOOT_BATCH_MIN 8u
 #define IL_RAD_SHOOT_BATCH_MAX 64u
 
-/* Shooters per step: 8, and one per 4096 patches above 32,768, up to 64.
+/* Shooters per step: one per 4096 patches, at least 8 (so below 36,864
+ * patches always 8) and at most 64.
  * Each step scans every patch (and fills the display array), one thread's
  * work while the others wait; on a large mesh a batch of 8 rows leaves that
  * serial scan a large share of the time (15% of the atrium's 150,848-patch
