@@ -657,12 +657,20 @@ typedef struct il_rsm_desc {
                                 faster, biased choice */
     bool all_texels;         /* gather every texel of every map (the exact sum;
                                 samples and radius are ignored) */
+    uint32_t maps;           /* maps gathered per shading point when the scene has
+                                more (a point light has six): chosen at random, half
+                                in proportion to their reflected flux and half
+                                uniformly, each weighted by 1 / (maps x its
+                                probability): an unbiased estimate of the sum over
+                                every map; 1 to 4096, 0 means 8 */
+    bool all_maps;           /* gather every map at every shading point */
     bool shadow_test;        /* Nilles 2017 eq. 11: a shadow ray between the
                                 shading point and every texel gathered */
 } il_rsm_desc;
 
 typedef struct il_rsm_stats {
     uint32_t maps;           /* faces rendered (one per spot, six per point light) */
+    uint32_t maps_per_point; /* maps gathered per shading point (all: `maps`) */
     uint32_t resolution;     /* texels per side */
     uint64_t texels;         /* texels that hold reflected flux, all maps */
     uint64_t map_bytes;

@@ -18,27 +18,35 @@ const char cli_rsm_help[] =
     "                         projection, as a fraction of the map's side, 0.001 to 2\n"
     "                         (default 1.5: the whole map, unbiased; smaller is\n"
     "                         faster to converge but misses distant texels)\n"
+    "  --rsm-maps N|all       maps gathered per shading point when there are more\n"
+    "                         (a point light has six), chosen at random by their\n"
+    "                         flux: an unbiased estimate of the sum over every map;\n"
+    "                         1 to 4096 (default 8), or all\n"
     "  --rsm-shadow-test on|off\n"
     "                         cast a shadow ray to every texel gathered (Nilles 2017,\n"
     "                         eq. 11; default off: indirect light passes through\n"
     "                         walls, as in Dachsbacher & Stamminger 2005)\n";
 
-static const char *const names[] = {"--rsm-size", "--rsm-samples", "--rsm-radius",
+static const char *const names[] = {"--rsm-size", "--rsm-samples", "--rsm-radius", "--rsm-maps",
                                     "--rsm-shadow-test"};
 #define COUNT(a) (sizeof a / sizeof a[0])
+
+/* "all", or a count from 1 to max. */
+static bool parse_count_or_all(const char *name, const char *v, uint32_t max, bool *all,
+                               uint32_t *count)
+{
+    *all = !strcmp(v, "all");
+    return *all || cli_parse_u32(name, v, 1, max, count);
+}
 
 static bool parse_value(const char *name, const char *v, il_rsm_desc *d)
 {
     if (!strcmp(name, "--rsm-size"))
         return cli_parse_u32(name, v, 1, 4096, &d->resolution);
-    if (!strcmp(name, "--rsm-samples")) {
-        if (!strcmp(v, "all")) {
-            d->all_texels = true;
-            return true;
-        }
-        d->all_texels = false;
-        return cli_parse_u32(name, v, 1, 65536, &d->samples);
-    }
+    if (!strcmp(name, "--rsm-samples"))
+        return parse_count_or_all(name, v, 65536, &d->all_texels, &d->samples);
+    if (!strcmp(name, "--rsm-maps"))
+        return parse_count_or_all(name, v, 4096, &d->all_maps, &d->maps);
     if (!strcmp(name, "--rsm-radius")) {
         double x = 0.0;
         bool ok = cli_parse_double(name, v, 0.001, 2.0, &x);
@@ -74,6 +82,7 @@ void cli_rsm_stats_json(cJSON *parent, const il_rsm_desc *d, const il_rsm_stats 
     cJSON_AddNumberToObject(r, "radius", d->radius > 0.0f ? d->radius : 1.5);
     cJSON_AddBoolToObject(r, "shadow_test", d->shadow_test);
     cJSON_AddNumberToObject(r, "maps", s->maps);
+    cJSON_AddNumberToObject(r, "maps_per_point", s->maps_per_point);
     cJSON_AddNumberToObject(r, "texels", (double)s->texels);
     cJSON_AddNumberToObject(r, "map_bytes", (double)s->map_bytes);
     cJSON_AddNumberToObject(r, "gathered", (double)s->gathered);
@@ -90,9 +99,9 @@ void cli_rsm_summary(const il_rsm_desc *d, const il_rsm_stats *s)
     else
         snprintf(samples, sizeof samples, "%u samples", d->samples ? d->samples : 400u);
     fprintf(stderr,
-            "illum: rsm: %u maps of %u^2, %llu texels lit, %.1f MB; %s, r_max %.3g, shadow test "
-            "%s, %llu shadow rays (maps %.2f s, gather %.2f s)\n",
-            s->maps, s->resolution, (unsigned long long)s->texels,
+            "illum: rsm: %u maps of %u^2 (%u a shading point), %llu texels lit, %.1f MB; %s, "
+            "r_max %.3g, shadow test %s, %llu shadow rays (maps %.2f s, gather %.2f s)\n",
+            s->maps, s->resolution, s->maps_per_point, (unsigned long long)s->texels,
             (double)s->map_bytes / (1024.0 * 1024.0), samples,
             d->radius > 0.0f ? (double)d->radius : 1.5, d->shadow_test ? "on" : "off",
             (unsigned long long)s->shadow_rays, s->seconds_build, s->seconds_gather);

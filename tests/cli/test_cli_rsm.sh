@@ -18,7 +18,7 @@ cat > corner.json <<'JSON'
 JSON
 
 expect_exit 0 "render --method rsm --help" -- "$ILLUM" render --method rsm --help
-for o in --rsm-size --rsm-samples --rsm-radius --rsm-shadow-test; do
+for o in --rsm-size --rsm-samples --rsm-radius --rsm-maps --rsm-shadow-test; do
     expect_stdout -- "$o" "rsm help lists $o"
 done
 expect_exit 0 "render --help" -- "$ILLUM" render --help
@@ -62,6 +62,33 @@ expect_exit 0 "rsm again, 1 thread" -- "$ILLUM" render corner.json --method rsm 
     --rsm-samples all --width 16 --height 16 -q -o again.pfm --threads 1
 checks=$((checks + 1))
 cmp -s again.pfm all.pfm || fail "rsm: the same seed gave another image"
+# Two point lights inside a box, twelve maps: 8 a shading point by default,
+# --rsm-maps N or all; the same image again from the same seed with another
+# thread count.
+cat > points.json <<'JSON'
+{"meshes": [{"shape": "box", "size": 4}],
+ "lights": [{"type": "point", "position": [0.5, 0.3, 0], "intensity": 2},
+            {"type": "point", "position": [-0.5, -0.3, 0.2], "intensity": 1}],
+ "camera": {"position": [0, 0, 1.5], "target": [0, 0, -1], "fov": 60}}
+JSON
+for m in "" "--rsm-maps 3" "--rsm-maps all"; do
+    expect_exit 0 "rsm points $m" -- "$ILLUM" render points.json --method rsm --rsm-size 16 \
+        --rsm-samples 20 $m --width 12 --height 12 --spp 2 -o "points$m.pfm" --stats points.json.out
+    case "$m" in
+        "") want=8 ;; *3) want=3 ;; *) want=12 ;;
+    esac
+    expect_stderr "rsm: 12 maps of 16^2 ($want a shading point)" "rsm points $m: summary line"
+    checks=$((checks + 1))
+    grep -q "\"maps_per_point\":[[:space:]]*$want" points.json.out || fail "rsm points $m: maps_per_point"
+done
+expect_exit 0 "rsm points, 1 thread" -- "$ILLUM" render points.json --method rsm --rsm-size 16 \
+    --rsm-samples 20 --rsm-maps 3 --width 12 --height 12 --spp 2 -q -o again3.pfm --threads 1
+checks=$((checks + 1))
+cmp -s again3.pfm "points--rsm-maps 3.pfm" || fail "rsm --rsm-maps 3: the same seed gave another image"
+expect_exit 1 "--rsm-maps 0" -- "$ILLUM" render corner.json --method rsm --rsm-maps 0 -q -o bad.exr
+expect_stderr "--rsm-maps" "--rsm-maps 0"
+expect_exit 1 "--rsm-maps 5000" -- "$ILLUM" render corner.json --method rsm --rsm-maps 5000 -q -o bad.exr
+
 # A scene without spot, point or directional light: direct light only, no map.
 expect_exit 0 "rsm cornell (area light only)" -- "$ILLUM" render cornell --method rsm --width 16 \
     --height 16 --spp 1 -q -o cornell.pfm --stats cornell.json

@@ -10,7 +10,10 @@
  *  - one texel's light at a receiver: Phi/pi cos cos / (r^2 + A/pi) times
  *    the BSDF, zero facing away, zero behind a blocker with the shadow
  *    test (one shadow ray counted);
- *  - projection into a map, the option ranges. */
+ *  - projection into a map, the option ranges;
+ *  - the choice of maps per shading point: probabilities half by flux and
+ *    half uniform, il_rsm_choose following them, and the estimate from 3 of
+ *    12 maps unbiased (its mean over 4000 draws against the exact sum). */
 #include <string.h>
 
 #include "check.h"
@@ -176,8 +179,12 @@ static void test_settings(void)
     CHECK_OK(il_rsm_settings_resolve(NULL, NULL, &st, &g_err), &g_err);
     CHECK(st.resolution == 512 && st.samples == 400 && st.radius == 1.5f && !st.shadow_test &&
           !st.all_texels && st.max_depth == 8);
+    CHECK(st.maps == IL_RSM_DEFAULT_MAPS);
+    il_rsm_desc all = {.all_maps = true, .maps = 3};
+    CHECK_OK(il_rsm_settings_resolve(&all, NULL, &st, &g_err), &g_err);
+    CHECK(st.maps == 0);
     il_rsm_desc bad[] = {{.resolution = 5000}, {.samples = 70000}, {.radius = -1.0f},
-                         {.radius = 2.5f}, {.radius = NAN}};
+                         {.radius = 2.5f}, {.radius = NAN}, {.maps = 5000}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
         CHECK(il_rsm_settings_resolve(&bad[i], NULL, &st, &g_err) == IL_ERR_INVALID);
     /* And through il_render. */
@@ -195,7 +202,82 @@ static void test_settings(void)
     il_render_stats rs;
     CHECK_OK(il_render(s, film, &rd, &rs, &g_err), &g_err);
     CHECK(rs.rsm.maps == 1 && rs.rsm.resolution == 512 && rs.rsm.texels > 0 && rs.spp == 16);
+    CHECK(rs.rsm.maps_per_point == 1);
     il_film_release(film);
+    il_scene_release(s);
+}
+
+static void test_map_choice(void)
+{
+    il_scene *s = new_scene();
+    uint32_t m = add_material(s, (il_material_desc){.diffuse = {0.6f, 0.6f, 0.6f}});
+    add_box(s, m);
+    il_light_desc a = {.type = IL_LIGHT_POINT, .position = v3(-0.5f, 0.5f, 0.2f),
+                       .intensity = v3(2, 2, 2)};
+    il_light_desc b = {.type = IL_LIGHT_POINT, .position = v3(0.6f, -0.3f, -0.4f),
+                       .intensity = v3(0.2f, 0.2f, 0.2f)};
+    CHECK_OK(il_scene_add_light(s, &a, &g_err), &g_err);
+    CHECK_OK(il_scene_add_light(s, &b, &g_err), &g_err);
+    commit(s);
+    il_rsm r;
+    CHECK_OK(il_rsm_build(s, 32, 1, &r, &g_err), &g_err);
+    CHECK(r.count == 12);
+    CHECK_OK(il_rsm_choice_init(&r, &g_err), &g_err);
+    if (r.count != 12 || !r.pick) {
+        il_rsm_free(&r);
+        il_scene_release(s);
+        return;
+    }
+    /* pick[k] = 1/2 flux_k / total + 1/2 / 12. */
+    double flux[12], total = 0.0;
+    for (uint32_t k = 0; k < 12; k++) {
+        flux[k] = 0.0;
+        for (size_t t = 0; t < 32 * 32; t++)
+            flux[k] += il_luminance(r.maps[k].tex[t].flux);
+        total += flux[k];
+    }
+    double sum = 0.0;
+    for (uint32_t k = 0; k < 12; k++) {
+        CHECK_REL(r.pick[k], 0.5 * flux[k] / total + 0.5 / 12.0, 1e-9);
+        sum += r.pick[k];
+    }
+    CHECK_NEAR(sum, 1.0, 1e-12);
+    CHECK(r.pick_cdf[11] == 1.0);
+    /* il_rsm_choose over an even grid of u hits each map pick[k] of the time. */
+    uint32_t hits[12] = {0};
+    const uint32_t grid = 100000;
+    for (uint32_t i = 0; i < grid; i++)
+        hits[il_rsm_choose(&r, (i + 0.5) / grid)]++;
+    for (uint32_t k = 0; k < 12; k++)
+        CHECK_NEAR((double)hits[k] / grid, r.pick[k], 2.0 / grid);
+    CHECK(il_rsm_choose(&r, 0.0) == 0 && il_rsm_choose(&r, 0.9999999999) == 11);
+
+    /* A receiver on the floor: every texel of every map is the exact sum;
+     * 3 maps drawn per estimate average to it. */
+    il_bsdf bsdf = {0};
+    il_rsm_receiver rc = {.p = v3(0.2f, -1.0f, 0.1f), .n = v3(0, 1, 0), .g = v3(0, 1, 0),
+                          .wo = v3(0, 1, 0), .kd = v3s(0.6f * IL_INV_PI), .diffuse = true,
+                          .bsdf = &bsdf};
+    il_rsm_counts cnt = {0};
+    il_sampler smp;
+    il_sampler_start(&smp, IL_SAMPLER_PCG, 1, 0, 0);
+    il_vec3 exact = il_rsm_gather(s, &r, NULL, &rc, false, 0, &smp, &cnt);
+    il_vec3 same = il_rsm_gather(s, &r, NULL, &rc, false, 12, &smp, &cnt);
+    CHECK(exact.y > 0.0f && same.y == exact.y); /* as many as there are: all of them */
+    const int n = 4000;
+    double mean = 0.0, sq = 0.0;
+    for (int i = 0; i < n; i++) {
+        il_sampler_start(&smp, IL_SAMPLER_PCG, 7, 0, (uint32_t)i);
+        double v = il_rsm_gather(s, &r, NULL, &rc, false, 3, &smp, &cnt).y;
+        mean += v;
+        sq += v * v;
+    }
+    mean /= n;
+    double se = sqrt(fmax(sq / n - mean * mean, 0.0) / n);
+    printf("map choice: 3 of 12 maps, mean %.6f +- %.6f, exact %.6f\n", mean, se, (double)exact.y);
+    CHECK(fabs(mean - exact.y) < 4.0 * se + 1e-6 * exact.y);
+    CHECK(se < 0.02 * exact.y);
+    il_rsm_free(&r);
     il_scene_release(s);
 }
 
@@ -213,5 +295,6 @@ int main(void)
     test_directional();
     test_texel_light();
     test_settings();
+    test_map_choice();
     return check_report();
 }

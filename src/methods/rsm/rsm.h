@@ -42,6 +42,8 @@ il_status il_rsm_render(const il_scene *scene, il_film *film, const il_render_de
 #define IL_RSM_MAX_RESOLUTION 4096u
 #define IL_RSM_MAX_SAMPLES 65536u
 #define IL_RSM_MAX_RADIUS 2.0f
+#define IL_RSM_MAX_MAPS 4096u
+#define IL_RSM_DEFAULT_MAPS 8u
 /* A spot whose cut-off half-angle exceeds this (degrees) gets six cube faces
  * instead of one perspective map (tan 60 = 1.73: texels at the edge of one
  * map would be 4 times the solid angle of those at its centre). */
@@ -53,6 +55,7 @@ typedef struct il_rsm_settings {
     uint32_t samples;
     float radius;
     bool all_texels;
+    uint32_t maps;        /* per shading point; 0: every map */
     bool shadow_test;
     uint32_t max_depth;
 } il_rsm_settings;
@@ -90,6 +93,9 @@ typedef struct il_rsm {
     uint32_t count;
     il_rsm_map *maps;
     uint64_t rays;        /* cast building them */
+    double *pick;         /* count: each map's probability in the choice of
+                             il_rsm_gather (il_rsm_choice_init); NULL: none */
+    double *pick_cdf;     /* count: their running sums, the last exactly 1 */
 } il_rsm;
 
 /* Builds a map for every spot, point and directional light of the scene
@@ -141,11 +147,21 @@ il_vec2 il_rsm_project(const il_rsm_map *m, il_vec3 x);
 il_vec3 il_rsm_texel_light(const il_scene *scene, const il_rsm_texel *t, const il_rsm_receiver *r,
                            bool shadow_test, il_rsm_counts *counts);
 
-/* One bounce of indirect light at the receiver from every map: the sum over
+/* The probabilities of the map choice (rsm_choice.c): half in proportion
+ * to each map's reflected flux (the luminance of its texels' Phi_p summed),
+ * half uniform, so no map that holds light is left out. */
+il_status il_rsm_choice_init(il_rsm *rsm, il_error *err);
+/* The map that u in [0, 1) picks. */
+uint32_t il_rsm_choose(const il_rsm *rsm, double u);
+
+/* One bounce of indirect light at the receiver from the maps: the sum over
  * all texels (pat NULL), or the sampling pattern's estimate of it around
- * each map's projection of r->p, shifted by one 2D sample per map. */
+ * each map's projection of r->p, shifted by one 2D sample per map.  With
+ * 0 < maps < rsm->count (and the choice initialised), the sum over maps is
+ * estimated by `maps` maps drawn by il_rsm_choose, each weighted by
+ * 1 / (maps pick[m]). */
 il_vec3 il_rsm_gather(const il_scene *scene, const il_rsm *rsm, const il_rsm_pattern *pat,
-                      const il_rsm_receiver *r, bool shadow_test, il_sampler *smp,
-                      il_rsm_counts *counts);
+                      const il_rsm_receiver *r, bool shadow_test, uint32_t maps,
+                      il_sampler *smp, il_rsm_counts *counts);
 
 #endif

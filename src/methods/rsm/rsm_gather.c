@@ -143,19 +143,33 @@ static il_vec3 gather_pattern(const il_scene *scene, const il_rsm_map *m, const 
     return v3_scale(sum, wscale);
 }
 
+/* Map m's term: every texel, or the pattern's estimate. */
+static il_vec3 gather_map(const il_scene *scene, const il_rsm_map *m, const il_rsm_pattern *pat,
+                          const il_rsm_receiver *r, bool shadow_test, il_sampler *smp,
+                          il_rsm_counts *counts)
+{
+    if (!pat)
+        return gather_all(scene, m, r, shadow_test, counts);
+    il_vec2 shift = il_sampler_2d(smp);
+    return gather_pattern(scene, m, pat, r, shadow_test, shift, counts);
+}
+
 il_vec3 il_rsm_gather(const il_scene *scene, const il_rsm *rsm, const il_rsm_pattern *pat,
-                      const il_rsm_receiver *r, bool shadow_test, il_sampler *smp,
-                      il_rsm_counts *counts)
+                      const il_rsm_receiver *r, bool shadow_test, uint32_t maps,
+                      il_sampler *smp, il_rsm_counts *counts)
 {
     il_vec3 L = v3s(0.0f);
-    for (uint32_t k = 0; k < rsm->count; k++) {
-        const il_rsm_map *m = &rsm->maps[k];
-        if (!pat) {
-            L = v3_add(L, gather_all(scene, m, r, shadow_test, counts));
-        } else {
-            il_vec2 shift = il_sampler_2d(smp);
-            L = v3_add(L, gather_pattern(scene, m, pat, r, shadow_test, shift, counts));
-        }
+    if (maps == 0 || maps >= rsm->count || !rsm->pick) {
+        for (uint32_t k = 0; k < rsm->count; k++)
+            L = v3_add(L, gather_map(scene, &rsm->maps[k], pat, r, shadow_test, smp, counts));
+        return L;
+    }
+    /* Sum_m G_m estimated by 1/K sum_k G_{m_k} / pick[m_k] (importance
+     * sampling over the maps, Veach 1997 section 2.5.2). */
+    for (uint32_t k = 0; k < maps; k++) {
+        uint32_t m = il_rsm_choose(rsm, (double)il_sampler_1d(smp));
+        il_vec3 g = gather_map(scene, &rsm->maps[m], pat, r, shadow_test, smp, counts);
+        L = v3_fma(L, g, (float)(1.0 / ((double)maps * rsm->pick[m])));
     }
     return L;
 }

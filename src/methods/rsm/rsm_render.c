@@ -27,6 +27,7 @@ typedef struct rsm_method {
     const il_rsm *rsm;
     const il_rsm_pattern *pat;   /* NULL: every texel */
     bool shadow_test;
+    uint32_t maps;               /* per shading point; 0: every map */
     uint32_t max_depth;
     _Atomic uint64_t gathered, shadow_rays;
 } rsm_method;
@@ -92,7 +93,8 @@ static il_vec3 camera_radiance(const rsm_method *m, il_vec3 org, il_vec3 dir, il
         r.n = flip ? v3_neg(s.ns) : s.ns;
         r.diffuse = b.type == IL_MATERIAL_DIFFUSE;
         r.kd = v3_scale(b.diffuse, IL_INV_PI);
-        R = v3_add(R, il_rsm_gather(m->scene, m->rsm, m->pat, &r, m->shadow_test, smp, counts));
+        R = v3_add(R, il_rsm_gather(m->scene, m->rsm, m->pat, &r, m->shadow_test, m->maps, smp,
+                                    counts));
     }
     return v3_add(L, v3_mul(beta, R));
 }
@@ -130,16 +132,18 @@ il_status il_rsm_render(const il_scene *scene, il_film *film, const il_render_de
     st = il_rsm_build(scene, rs.resolution, desc->threads, &rsm, err);
     if (st != IL_OK)
         return st;
-    double t1 = omp_get_wtime();
     il_rsm_pattern pat = {0};
-    if (!rs.all_texels && (st = il_rsm_pattern_init(&pat, rs.samples, rs.radius, err)) != IL_OK) {
+    if ((st = il_rsm_choice_init(&rsm, err)) != IL_OK ||
+        (!rs.all_texels && (st = il_rsm_pattern_init(&pat, rs.samples, rs.radius, err)) != IL_OK)) {
         il_rsm_free(&rsm);
         return st;
     }
+    double t1 = omp_get_wtime();
     rsm_method m = {.scene = scene,
                     .rsm = &rsm,
                     .pat = rs.all_texels ? NULL : &pat,
                     .shadow_test = rs.shadow_test,
+                    .maps = rs.maps,
                     .max_depth = rs.max_depth};
     atomic_init(&m.gathered, 0);
     atomic_init(&m.shadow_rays, 0);
@@ -148,6 +152,7 @@ il_status il_rsm_render(const il_scene *scene, il_film *film, const il_render_de
     double t2 = omp_get_wtime();
     il_rsm_stats *o = &stats->rsm;
     o->maps = rsm.count;
+    o->maps_per_point = rs.maps && rs.maps < rsm.count ? rs.maps : rsm.count;
     o->resolution = rs.resolution;
     for (uint32_t k = 0; k < rsm.count; k++)
         o->texels += rsm.maps[k].texels;

@@ -22,10 +22,15 @@ il_status il_rsm_settings_resolve(const il_rsm_desc *d, const il_render_desc *rd
         return il_fail(err, IL_ERR_INVALID,
                        "rsm: radius %g is out of range (0 to %g of the map's side)",
                        (double)d->radius, (double)IL_RSM_MAX_RADIUS);
+    if (d->maps > IL_RSM_MAX_MAPS)
+        return il_fail(err, IL_ERR_INVALID,
+                       "rsm: %u maps per shading point is out of range (1 to %u)", d->maps,
+                       IL_RSM_MAX_MAPS);
     out->resolution = d->resolution ? d->resolution : 512u;
     out->samples = d->samples ? d->samples : 400u;
     out->radius = d->radius > 0.0f ? d->radius : 1.5f;
     out->all_texels = d->all_texels;
+    out->maps = d->all_maps ? 0u : d->maps ? d->maps : IL_RSM_DEFAULT_MAPS;
     out->shadow_test = d->shadow_test;
     out->max_depth = rd && rd->max_depth ? rd->max_depth : 8u;
     return IL_OK;
