@@ -12,7 +12,7 @@
  *    test (one shadow ray counted);
  *  - projection into a map, the option ranges;
  *  - the choice of maps per shading point: probabilities half by flux and
- *    half uniform, il_rsm_choose following them, and the estimate from 3 of
+ *    half uniform, the draws following them, and the estimate from 3 of
  *    12 maps unbiased (its mean over 4000 draws against the exact sum). */
 #include <string.h>
 
@@ -223,7 +223,7 @@ static void test_map_choice(void)
     CHECK_OK(il_rsm_build(s, 32, 1, &r, &g_err), &g_err);
     CHECK(r.count == 12);
     CHECK_OK(il_rsm_choice_init(&r, &g_err), &g_err);
-    if (r.count != 12 || !r.pick) {
+    if (r.count != 12 || r.choice.n != 12) {
         il_rsm_free(&r);
         il_scene_release(s);
         return;
@@ -238,19 +238,21 @@ static void test_map_choice(void)
     }
     double sum = 0.0;
     for (uint32_t k = 0; k < 12; k++) {
-        CHECK_REL(r.pick[k], 0.5 * flux[k] / total + 0.5 / 12.0, 1e-9);
-        sum += r.pick[k];
+        double pmf = il_distrib1d_pmf(&r.choice, k);
+        CHECK_REL(pmf, 0.5 * flux[k] / total + 0.5 / 12.0, 1e-6); /* float tables */
+        sum += pmf;
     }
-    CHECK_NEAR(sum, 1.0, 1e-12);
-    CHECK(r.pick_cdf[11] == 1.0);
-    /* il_rsm_choose over an even grid of u hits each map pick[k] of the time. */
+    CHECK_NEAR(sum, 1.0, 1e-6);
+    CHECK(r.choice.cdf[12] == 1.0f);
+    /* Draws over an even grid of u hit each map pick[k] of the time. */
     uint32_t hits[12] = {0};
     const uint32_t grid = 100000;
     for (uint32_t i = 0; i < grid; i++)
-        hits[il_rsm_choose(&r, (i + 0.5) / grid)]++;
+        hits[il_distrib1d_sample_discrete(&r.choice, (float)((i + 0.5) / grid), NULL, NULL)]++;
     for (uint32_t k = 0; k < 12; k++)
-        CHECK_NEAR((double)hits[k] / grid, r.pick[k], 2.0 / grid);
-    CHECK(il_rsm_choose(&r, 0.0) == 0 && il_rsm_choose(&r, 0.9999999999) == 11);
+        CHECK_NEAR((double)hits[k] / grid, il_distrib1d_pmf(&r.choice, k), 2.0 / grid);
+    CHECK(il_distrib1d_sample_discrete(&r.choice, 0.0f, NULL, NULL) == 0 &&
+          il_distrib1d_sample_discrete(&r.choice, 0.99999994f, NULL, NULL) == 11);
 
     /* A receiver on the floor: every texel of every map is the exact sum;
      * 3 maps drawn per estimate average to it. */

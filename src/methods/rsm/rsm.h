@@ -27,6 +27,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "core/sampler.h"
+#include "core/sampling.h"
 #include "core/vec.h"
 #include "illum/illum.h"
 #include "scene/bsdf.h"
@@ -93,9 +94,8 @@ typedef struct il_rsm {
     uint32_t count;
     il_rsm_map *maps;
     uint64_t rays;        /* cast building them */
-    double *pick;         /* count: each map's probability in the choice of
-                             il_rsm_gather (il_rsm_choice_init); NULL: none */
-    double *pick_cdf;     /* count: their running sums, the last exactly 1 */
+    il_distrib1d choice;  /* count bins: the maps' probabilities in the choice of
+                             il_rsm_gather (il_rsm_choice_init); n == 0: none */
 } il_rsm;
 
 /* Builds a map for every spot, point and directional light of the scene
@@ -151,15 +151,13 @@ il_vec3 il_rsm_texel_light(const il_scene *scene, const il_rsm_texel *t, const i
  * to each map's reflected flux (the luminance of its texels' Phi_p summed),
  * half uniform, so no map that holds light is left out. */
 il_status il_rsm_choice_init(il_rsm *rsm, il_error *err);
-/* The map that u in [0, 1) picks. */
-uint32_t il_rsm_choose(const il_rsm *rsm, double u);
 
 /* One bounce of indirect light at the receiver from the maps: the sum over
  * all texels (pat NULL), or the sampling pattern's estimate of it around
  * each map's projection of r->p, shifted by one 2D sample per map.  With
  * 0 < maps < rsm->count (and the choice initialised), the sum over maps is
- * estimated by `maps` maps drawn by il_rsm_choose, each weighted by
- * 1 / (maps pick[m]). */
+ * estimated by `maps` maps drawn from rsm->choice, each weighted by
+ * 1 / (maps pmf[m]). */
 il_vec3 il_rsm_gather(const il_scene *scene, const il_rsm *rsm, const il_rsm_pattern *pat,
                       const il_rsm_receiver *r, bool shadow_test, uint32_t maps,
                       il_sampler *smp, il_rsm_counts *counts);

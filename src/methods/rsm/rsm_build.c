@@ -214,8 +214,7 @@ void il_rsm_free(il_rsm *r)
     for (uint32_t k = 0; k < r->count; k++)
         free(r->maps[k].tex);
     free(r->maps);
-    free(r->pick);
-    free(r->pick_cdf);
+    il_distrib1d_free(&r->choice);
     memset(r, 0, sizeof *r);
 }
 

@@ -16,49 +16,29 @@
 
 il_status il_rsm_choice_init(il_rsm *rsm, il_error *err)
 {
-    free(rsm->pick);
-    free(rsm->pick_cdf);
-    rsm->pick = rsm->pick_cdf = NULL;
+    il_distrib1d_free(&rsm->choice);
     if (rsm->count == 0)
         return IL_OK;
-    rsm->pick = il_malloc(rsm->count * sizeof *rsm->pick, err);
-    rsm->pick_cdf = rsm->pick ? il_malloc(rsm->count * sizeof *rsm->pick_cdf, err) : NULL;
-    if (!rsm->pick_cdf) {
-        free(rsm->pick);
-        rsm->pick = NULL;
+    double *flux = il_malloc(rsm->count * sizeof *flux, err);
+    float *pick = flux ? il_malloc(rsm->count * sizeof *pick, err) : NULL;
+    if (!pick) {
+        free(flux);
         return IL_ERR_MEMORY;
     }
     double total = 0.0;
     for (uint32_t k = 0; k < rsm->count; k++) {
         const il_rsm_map *m = &rsm->maps[k];
         size_t n = (size_t)m->size * m->size;
-        double flux = 0.0;
+        flux[k] = 0.0;
         for (size_t t = 0; t < n; t++)
-            flux += (double)il_luminance(m->tex[t].flux);
-        rsm->pick[k] = flux > 0.0 ? flux : 0.0;
-        total += rsm->pick[k];
+            flux[k] += (double)il_luminance(m->tex[t].flux);
+        total += flux[k];
     }
-    double uniform = 1.0 / rsm->count, sum = 0.0;
-    for (uint32_t k = 0; k < rsm->count; k++) {
-        rsm->pick[k] = total > 0.0 ? 0.5 * rsm->pick[k] / total + 0.5 * uniform : uniform;
-        sum += rsm->pick[k];
-        rsm->pick_cdf[k] = sum;
-    }
-    /* Rounding: the search below must end inside the array. */
-    rsm->pick_cdf[rsm->count - 1] = 1.0;
-    return IL_OK;
-}
-
-uint32_t il_rsm_choose(const il_rsm *rsm, double u)
-{
-    /* The first k with u < cdf[k]. */
-    uint32_t lo = 0, hi = rsm->count - 1;
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        if (u < rsm->pick_cdf[mid])
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    return lo;
+    double uniform = 1.0 / rsm->count;
+    for (uint32_t k = 0; k < rsm->count; k++)
+        pick[k] = (float)(total > 0.0 ? 0.5 * flux[k] / total + 0.5 * uniform : uniform);
+    il_status st = il_distrib1d_init(&rsm->choice, pick, rsm->count, err);
+    free(pick);
+    free(flux);
+    return st;
 }

@@ -159,7 +159,7 @@ il_vec3 il_rsm_gather(const il_scene *scene, const il_rsm *rsm, const il_rsm_pat
                       il_sampler *smp, il_rsm_counts *counts)
 {
     il_vec3 L = v3s(0.0f);
-    if (maps == 0 || maps >= rsm->count || !rsm->pick) {
+    if (maps == 0 || maps >= rsm->count || rsm->choice.n != rsm->count) {
         for (uint32_t k = 0; k < rsm->count; k++)
             L = v3_add(L, gather_map(scene, &rsm->maps[k], pat, r, shadow_test, smp, counts));
         return L;
@@ -167,9 +167,10 @@ il_vec3 il_rsm_gather(const il_scene *scene, const il_rsm *rsm, const il_rsm_pat
     /* Sum_m G_m estimated by 1/K sum_k G_{m_k} / pick[m_k] (importance
      * sampling over the maps, Veach 1997 section 2.5.2). */
     for (uint32_t k = 0; k < maps; k++) {
-        uint32_t m = il_rsm_choose(rsm, (double)il_sampler_1d(smp));
+        float pmf;
+        uint32_t m = il_distrib1d_sample_discrete(&rsm->choice, il_sampler_1d(smp), &pmf, NULL);
         il_vec3 g = gather_map(scene, &rsm->maps[m], pat, r, shadow_test, smp, counts);
-        L = v3_fma(L, g, (float)(1.0 / ((double)maps * rsm->pick[m])));
+        L = v3_fma(L, g, 1.0f / ((float)maps * pmf));
     }
     return L;
 }
