@@ -852,6 +852,53 @@ il_status il_render_region(const il_scene *scene, il_film *film, const il_render
  * row by row, 4 doubles: sum w*r, sum w*g, sum w*b, sum w. */
 double *il_film_data(il_film *film);
 
+/* ------------------------------------------------------------ illuminance */
+
+/* What a light meter would read (docs/illuminance.md): the irradiance at a
+ * point on a surface of the given orientation, from every light of the scene
+ * and their interreflections, estimated by the path tracer's paths.  A
+ * sensor is virtual: it blocks no light, and one on a surface reads that
+ * surface's irradiance. */
+typedef struct il_sensor {
+    il_vec3 position;
+    il_vec3 normal;          /* the side it faces; need not be unit, must not be zero */
+} il_sensor;
+
+typedef struct il_illuminance_desc {
+    uint32_t samples;        /* paths per sensor; 0 means 1024 */
+    uint32_t max_depth;      /* as il_render_desc.max_depth, counting the sensor as the
+                                first bounce: 1 is direct light only; 0 means 8 */
+    uint64_t seed;
+    int threads;             /* 0 means all cores */
+    il_sampler_type sampler;
+    /* Called on the calling thread after every round of samples (fraction done
+     * in [0, 1]); return false to stop: the readings then rest on the samples
+     * taken so far (the same number for every sensor, il_illuminance_stats.samples). */
+    bool (*progress)(double fraction, double seconds, void *user);
+    void *progress_user;
+} il_illuminance_desc;
+
+/* One sensor's reading. */
+typedef struct il_illuminance {
+    il_vec3 irradiance;      /* W/m^2, linear Rec.709 */
+    float lux;               /* illuminance: 683 lm/W times the luminance of irradiance */
+    float lux_error;         /* the standard error of lux over the sensor's samples
+                                (Monte Carlo noise; quasi-random samples do better) */
+} il_illuminance;
+
+typedef struct il_illuminance_stats {
+    uint32_t samples;        /* paths per sensor taken (fewer when progress stopped it) */
+    uint64_t rays;
+    double seconds;
+    uint64_t nonfinite_samples; /* samples dropped because they were NaN or Inf */
+} il_illuminance_stats;
+
+/* Reads `count` sensors into out[0..count-1].  The same seed gives the same
+ * readings, bit for bit, whatever the thread count.  stats may be NULL. */
+il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors, size_t count,
+                                 const il_illuminance_desc *desc, il_illuminance *out,
+                                 il_illuminance_stats *stats, il_error *err);
+
 /* ------------------------------------------------------------------- bake */
 
 /* Light written onto the geometry: the scene's meshes as the method meshed

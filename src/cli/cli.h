@@ -360,6 +360,34 @@ int cli_camera_read_file(cli_camera_options *o);
 /* Overrides the scene's camera with what was given (before rendering). */
 int cli_camera_apply(il_scene *scene, const cli_camera_options *o);
 
+/* Where `illum illuminance` measures (cli_sensors.c). */
+typedef struct cli_plane {
+    int axis;                        /* 0 x, 1 y, 2 z: the plane is axis = value */
+    float sign;                      /* +1: sensors face +axis, -1: -axis */
+    float value;
+} cli_plane;
+
+typedef struct cli_sensor_grid {
+    il_sensor *sensors;              /* malloc'd; freed by the caller */
+    size_t count;
+    uint32_t cols, rows;             /* a plane's grid; 0 for a file's points */
+    int axes[2];                     /* the coordinates along the columns and the rows */
+    double cell[2];                  /* the cell size along each, metres */
+} cli_sensor_grid;
+
+/* "y=0.85" (facing +y) or "-y=2.4" (facing -y). */
+bool cli_parse_plane(const char *opt, const char *s, cli_plane *out);
+/* The plane's area within the bounds lo..hi, inset by margin: {min0, min1,
+ * max0, max1} along the grid's two axes (x before z, y before z). */
+void cli_plane_area(const cli_plane *plane, il_vec3 lo, il_vec3 hi, double margin, double area[4]);
+/* A sensor at the centre of every cell of the plane's area: cells of about
+ * `spacing` (0: EN 12464-1's largest cell for the area).  Prints the error. */
+int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing, cli_sensor_grid *g);
+/* The sensors of a text file: one 'x y z [nx ny nz]' a line (normal +y when
+ * omitted), '#' comments, an optional header line.  Prints the error. */
+int cli_read_sensors(const char *path, cli_sensor_grid *g);
+
+int cmd_illuminance(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);
 int cmd_info(int argc, char **argv);

@@ -16,6 +16,8 @@ static const char *usage =
     "  bake SCENE -o OUT.ply|OUT.glb [options]\n"
     "                           solve with (hierarchical) radiosity, write meshes with\n"
     "                           vertex radiance\n"
+    "  illuminance SCENE --plane y=H | --points FILE\n"
+    "                           light-meter readings in lux on a work plane or at points\n"
     "  info SCENE               print what a scene contains\n"
     "  compare A B [--diff D]   compare two images (RMSE, relative MSE, luminance)\n"
     "  envmap convert IN OUT --to latlong|angular|cross\n"
@@ -48,6 +50,7 @@ int main(int argc, char **argv)
             char *sub[] = {argv[2], help, NULL};
             if (!strcmp(argv[2], "render")) return cmd_render(2, sub);
             if (!strcmp(argv[2], "info")) return cmd_info(2, sub);
+            if (!strcmp(argv[2], "illuminance")) return cmd_illuminance(2, sub);
             if (!strcmp(argv[2], "compare")) return cmd_compare(2, sub);
             if (!strcmp(argv[2], "bake")) return cmd_bake(2, sub);
             if (!strcmp(argv[2], "envmap")) return cmd_envmap(2, sub);
@@ -67,6 +70,8 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "info"))
         return cmd_info(argc - 1, argv + 1);
+    if (!strcmp(cmd, "illuminance"))
+        return cmd_illuminance(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare"))
         return cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "bake"))

@@ -35,6 +35,12 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
 il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampler *sampler,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays);
 
+/* Irradiance (W/m^2) at p on a surface facing the unit normal n, from one
+ * sampled path (pt_path.c: the radiance of a white Lambertian surface there,
+ * times pi).  Counts rays cast in *rays. */
+il_vec3 il_pt_sensor_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_sampler *sampler,
+                                uint32_t max_depth, uint64_t *rays);
+
 /* The camera pass of il_pt_render (pt_wavefront.c): what il_camera_pass
  * does with il_pt_radiance, bit for bit, with the paths of a tile traced
  * together through the stream calls.  Fails only when out of memory. */

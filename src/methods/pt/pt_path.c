@@ -192,21 +192,52 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     return true;
 }
 
-il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *smp,
-                       uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays)
+/* Traces st->ray and the rays after it until the path ends. */
+static void pt_continue(const il_scene *s, il_pt_state *st, il_sampler *smp, uint32_t max_depth,
+                        il_pt_strategy strategy)
 {
     const il_tracer *tr = s->tracer;
-    il_pt_state st;
-    il_pt_begin(&st, org, dir);
     for (;;) {
         il_hit hit;
-        bool found = il_trace_closest(tr, &st.ray, &hit);
-        bool more = il_pt_step(s, &st, found ? &hit : NULL, smp, max_depth, strategy);
-        if (st.shadow)
-            il_pt_shadow_result(&st, il_trace_occluded(tr, &st.shadow_ray));
+        bool found = il_trace_closest(tr, &st->ray, &hit);
+        bool more = il_pt_step(s, st, found ? &hit : NULL, smp, max_depth, strategy);
+        if (st->shadow)
+            il_pt_shadow_result(st, il_trace_occluded(tr, &st->shadow_ray));
         if (!more)
             break;
     }
+}
+
+il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *smp,
+                       uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays)
+{
+    il_pt_state st;
+    il_pt_begin(&st, org, dir);
+    pt_continue(s, &st, smp, max_depth, strategy);
     *rays += st.rays;
     return st.L;
+}
+
+/* A white Lambertian surface (albedo 1) reflects L = E / pi whatever the
+ * direction it is seen from (Lambert's law, E = integral of L_i cos over the
+ * hemisphere, f = 1/pi), so the path tracer's estimate of the radiance of
+ * such a surface at p, times pi, estimates the irradiance there.  The
+ * surface is not in the scene: nothing hits it, it blocks nothing. */
+il_vec3 il_pt_sensor_irradiance(const il_scene *s, il_vec3 p, il_vec3 n, il_sampler *smp,
+                                uint32_t max_depth, uint64_t *rays)
+{
+    static const il_material white = {.type = IL_MATERIAL_DIFFUSE, .diffuse = {1.0f, 1.0f, 1.0f}};
+    const il_surface surf = {.p = p, .ng = n, .ns = n, .mesh = IL_HIT_NONE, .prim = IL_HIT_NONE,
+                             .material = &white};
+    const il_hit sensor = {.mesh = IL_HIT_NONE, .prim = IL_HIT_NONE, .ng = n};
+    il_pt_state st;
+    il_pt_begin(&st, v3_add(p, n), v3_neg(n)); /* seen along its normal */
+    st.rays = 0;                                /* no ray reached the sensor */
+    bool more = il_pt_step_at(s, &st, &sensor, &surf, NULL, smp, max_depth, IL_PT_MIS);
+    if (st.shadow)
+        il_pt_shadow_result(&st, il_trace_occluded(s->tracer, &st.shadow_ray));
+    if (more)
+        pt_continue(s, &st, smp, max_depth, IL_PT_MIS);
+    *rays += st.rays;
+    return v3_scale(st.L, IL_PI);
 }

@@ -1,0 +1,212 @@
+/* Where `illum illuminance` measures (cli.h): a grid on a plane, or the
+ * points of a file. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+#define MAX_SENSORS 10000000u
+
+static float coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
+
+static void set_coord(il_vec3 *v, int axis, float value)
+{
+    if (axis == 0)
+        v->x = value;
+    else if (axis == 1)
+        v->y = value;
+    else
+        v->z = value;
+}
+
+bool cli_parse_plane(const char *opt, const char *s, cli_plane *out)
+{
+    const char *p = s;
+    float sign = 1.0f;
+    if (*p == '-' || *p == '+')
+        sign = *p++ == '-' ? -1.0f : 1.0f;
+    int axis = *p == 'x' ? 0 : (*p == 'y' ? 1 : (*p == 'z' ? 2 : -1));
+    if (axis < 0 || p[1] != '=') {
+        cli_error("%s: expected AXIS=VALUE such as y=0.85 (or -y=2.4 to face down), got '%s'", opt, s);
+        return false;
+    }
+    double v = 0.0;
+    if (!cli_parse_double(opt, p + 2, -1e9, 1e9, &v))
+        return false;
+    out->axis = axis;
+    out->sign = sign;
+    out->value = (float)v;
+    return true;
+}
+
+/* EN 12464-1:2011, 4.4: the largest grid cell p = 0.2 * 5^log10(d) metres,
+ * d the longer side of the area, or the shorter one when the longer is at
+ * least twice it; p at most 10 m. */
+static double standard_cell(double a, double b)
+{
+    double lo = a < b ? a : b, hi = a < b ? b : a;
+    double d = hi >= 2.0 * lo ? lo : hi;
+    if (!(d > 0.0))
+        d = hi;
+    double p = 0.2 * pow(5.0, log10(d));
+    return p > 10.0 ? 10.0 : p;
+}
+
+int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing, cli_sensor_grid *g)
+{
+    int a0 = (plane->axis + 1) % 3, a1 = (plane->axis + 2) % 3; /* y: z and x */
+    if (a0 > a1) {
+        int t = a0;
+        a0 = a1;
+        a1 = t;
+    }
+    double len0 = area[2] - area[0], len1 = area[3] - area[1];
+    if (!(len0 > 0.0) || !(len1 > 0.0)) {
+        cli_error("the measuring area is empty (%g by %g); give --area or a smaller --margin",
+                  len0, len1);
+        return IL_EXIT_BAD_INPUT;
+    }
+    double p = spacing > 0.0 ? spacing : standard_cell(len0, len1);
+    /* As many cells as the nearest whole number of lengths over p, with a
+     * sensor at the centre of each (the standard's grid). */
+    double n0 = fmax(1.0, floor(len0 / p + 0.5)), n1 = fmax(1.0, floor(len1 / p + 0.5));
+    if (n0 * n1 > MAX_SENSORS) {
+        cli_error("a grid of %.0f by %.0f points is more than %u; give a larger --spacing", n0, n1,
+                  MAX_SENSORS);
+        return IL_EXIT_BAD_INPUT;
+    }
+    g->axes[0] = a0;
+    g->axes[1] = a1;
+    g->cols = (uint32_t)n0;
+    g->rows = (uint32_t)n1;
+    g->cell[0] = len0 / n0;
+    g->cell[1] = len1 / n1;
+    g->count = (size_t)g->cols * g->rows;
+    g->sensors = malloc(g->count * sizeof *g->sensors);
+    if (!g->sensors) {
+        cli_error("out of memory for %zu sensors", g->count);
+        return IL_EXIT_RUNTIME;
+    }
+    il_vec3 normal = {0.0f, 0.0f, 0.0f};
+    set_coord(&normal, plane->axis, plane->sign);
+    for (uint32_t r = 0; r < g->rows; r++)
+        for (uint32_t c = 0; c < g->cols; c++) {
+            il_vec3 p3 = {0.0f, 0.0f, 0.0f};
+            set_coord(&p3, plane->axis, plane->value);
+            set_coord(&p3, a0, (float)(area[0] + (c + 0.5) * g->cell[0]));
+            set_coord(&p3, a1, (float)(area[1] + (r + 0.5) * g->cell[1]));
+            g->sensors[(size_t)r * g->cols + c] = (il_sensor){p3, normal};
+        }
+    return IL_EXIT_OK;
+}
+
+void cli_plane_area(const cli_plane *plane, il_vec3 lo, il_vec3 hi, double margin, double area[4])
+{
+    int a0 = (plane->axis + 1) % 3, a1 = (plane->axis + 2) % 3;
+    if (a0 > a1) {
+        int t = a0;
+        a0 = a1;
+        a1 = t;
+    }
+    area[0] = coord(lo, a0) + margin;
+    area[1] = coord(lo, a1) + margin;
+    area[2] = coord(hi, a0) - margin;
+    area[3] = coord(hi, a1) - margin;
+}
+
+/* Up to 6 numbers of one line, separated by commas, spaces or tabs. */
+static int parse_numbers(char *line, double v[6], bool *junk)
+{
+    int n = 0;
+    char *p = line;
+    *junk = false;
+    for (;;) {
+        while (*p == ' ' || *p == '\t' || *p == ',' || *p == '\r' || *p == '\n')
+            p++;
+        if (!*p)
+            return n;
+        char *end;
+        errno = 0;
+        double x = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(x) || n == 6) {
+            *junk = true;
+            return n;
+        }
+        v[n++] = x;
+        p = end;
+    }
+}
+
+int cli_read_sensors(const char *path, cli_sensor_grid *g)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        cli_error("%s: cannot open the sensor file: %s", path, strerror(errno));
+        return IL_EXIT_BAD_INPUT;
+    }
+    size_t cap = 0;
+    char line[4096];
+    int rc = IL_EXIT_OK;
+    for (unsigned long no = 1; fgets(line, sizeof line, f); no++) {
+        if (!strchr(line, '\n') && !feof(f)) {
+            cli_error("%s:%lu: line longer than %zu characters", path, no, sizeof line - 1);
+            rc = IL_EXIT_BAD_INPUT;
+            break;
+        }
+        char *s = line;
+        while (isspace((unsigned char)*s))
+            s++;
+        if (!*s || *s == '#')
+            continue;
+        if (no == 1 && isalpha((unsigned char)*s))
+            continue; /* a CSV header such as x,y,z,nx,ny,nz */
+        double v[6];
+        bool junk;
+        int n = parse_numbers(s, v, &junk);
+        if (junk || (n != 3 && n != 6)) {
+            cli_error("%s:%lu: expected 'x y z' or 'x y z nx ny nz' (finite numbers, "
+                      "separated by spaces or commas)", path, no);
+            rc = IL_EXIT_BAD_INPUT;
+            break;
+        }
+        il_sensor sn = {{(float)v[0], (float)v[1], (float)v[2]}, {0.0f, 1.0f, 0.0f}};
+        if (n == 6) {
+            sn.normal = (il_vec3){(float)v[3], (float)v[4], (float)v[5]};
+            if (sn.normal.x == 0.0f && sn.normal.y == 0.0f && sn.normal.z == 0.0f) {
+                cli_error("%s:%lu: the normal is zero", path, no);
+                rc = IL_EXIT_BAD_INPUT;
+                break;
+            }
+        }
+        if (g->count == MAX_SENSORS) {
+            cli_error("%s: more than %u sensors", path, MAX_SENSORS);
+            rc = IL_EXIT_BAD_INPUT;
+            break;
+        }
+        if (g->count == cap) {
+            cap = cap ? 2 * cap : 256;
+            il_sensor *grown = realloc(g->sensors, cap * sizeof *grown);
+            if (!grown) {
+                cli_error("out of memory reading %s", path);
+                rc = IL_EXIT_RUNTIME;
+                break;
+            }
+            g->sensors = grown;
+        }
+        g->sensors[g->count++] = sn;
+    }
+    if (rc == IL_EXIT_OK && ferror(f)) {
+        cli_error("%s: read error", path);
+        rc = IL_EXIT_BAD_INPUT;
+    }
+    fclose(f);
+    if (rc == IL_EXIT_OK && g->count == 0) {
+        cli_error("%s: no sensor in the file (expected lines 'x y z [nx ny nz]')", path);
+        rc = IL_EXIT_BAD_INPUT;
+    }
+    return rc;
+}

@@ -1,0 +1,299 @@
+/* `illum illuminance SCENE`: light-meter readings in lux on a work plane
+ * or at given points (docs/illuminance.md). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+static const char *help =
+    "usage: illum illuminance SCENE (--plane AXIS=VALUE | --points FILE) [options]\n"
+    "\n"
+    "Measures the illuminance (lux) that a light meter would read, from every light\n"
+    "of the scene and their interreflections, with the path tracer's paths.\n"
+    "Prints the average, minimum, maximum and uniformity, and the grid of readings\n"
+    "when it fits the terminal.  Sensors block no light.  Lengths are metres.\n"
+    "\n"
+    "where:\n"
+    "  --plane AXIS=VALUE     a grid of sensors on the plane AXIS = VALUE (x, y or z),\n"
+    "                         facing +AXIS; -AXIS=VALUE faces -AXIS (-y=2.4: a ceiling)\n"
+    "  --area A0,B0,A1,B1     the part of the plane measured, from (A0,B0) to (A1,B1)\n"
+    "                         in its two other coordinates (y plane: x,z; x: y,z;\n"
+    "                         z: x,y); default: the scene's bounds\n"
+    "  --margin M             keep M metres from the edges of the area (default 0)\n"
+    "  --spacing S            cells of about S metres, a sensor at the centre of each;\n"
+    "                         default: EN 12464-1's largest cell, 0.2 * 5^log10(d)\n"
+    "  --points FILE          sensors from a text file: one 'x y z [nx ny nz]' a line\n"
+    "                         (commas or spaces; normal +y when omitted; '#' comments)\n"
+    "options:\n"
+    "  --samples N            paths per sensor (default 1024)\n"
+    "  --max-depth D          bounces, the sensor counting as the first: 1 is direct\n"
+    "                         light only (default 8)\n"
+    "  --sampler sobol|pcg    (default sobol)\n"
+    "  --seed S  --threads T  --quiet\n"
+    "  -o OUT.csv             every reading: x,y,z,nx,ny,nz,lux,lux_error,\n"
+    "                         irradiance_r,irradiance_g,irradiance_b (W/m^2)\n";
+
+typedef struct options {
+    const char *scene, *points, *output;
+    bool has_plane, has_area;
+    cli_plane plane;
+    double area[4], margin, spacing;
+    il_illuminance_desc desc;
+    il_render_desc run;               /* --seed, --threads through cli_run_option */
+    cli_run_options run_opts;
+    cli_env_options env;
+} options;
+
+static int parse_area(const char *opt, const char *s, double area[4])
+{
+    char *end;
+    const char *p = s;
+    for (int k = 0; k < 4; k++) {
+        area[k] = strtod(p, &end);
+        if (end == p || !isfinite(area[k]) || (k < 3 ? *end != ',' : *end != '\0')) {
+            cli_error("%s: expected four numbers A0,B0,A1,B1, got '%s'", opt, s);
+            return IL_EXIT_BAD_INPUT;
+        }
+        p = end + 1;
+    }
+    if (!(area[2] > area[0] && area[3] > area[1])) {
+        cli_error("%s: the second corner must be beyond the first in both coordinates, got '%s'",
+                  opt, s);
+        return IL_EXIT_BAD_INPUT;
+    }
+    return IL_EXIT_OK;
+}
+
+static int parse_options(int argc, char **argv, options *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = NULL;
+        int rc;
+        if (cli_env_option(argc, argv, &i, &o->env, &rc) ||
+            cli_run_option(argc, argv, &i, &o->run, &o->run_opts, &rc)) {
+            if (rc != IL_EXIT_OK)
+                return rc;
+            continue;
+        }
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(help, stdout);
+            fputs(cli_env_help, stdout);
+            return -1;
+        }
+        bool takes_value = !strcmp(a, "--plane") || !strcmp(a, "--area") || !strcmp(a, "--margin") ||
+                           !strcmp(a, "--spacing") || !strcmp(a, "--points") ||
+                           !strcmp(a, "--samples") || !strcmp(a, "--max-depth") ||
+                           !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output");
+        if (!takes_value) {
+            rc = cli_scene_argument("illuminance", a, &o->scene);
+            if (rc != IL_EXIT_OK)
+                return rc;
+            continue;
+        }
+        if (!(v = cli_value(argc, argv, &i)))
+            return IL_EXIT_USAGE;
+        bool ok = true;
+        if (!strcmp(a, "--plane")) {
+            ok = cli_parse_plane(a, v, &o->plane);
+            o->has_plane = true;
+        } else if (!strcmp(a, "--area")) {
+            if (parse_area(a, v, o->area) != IL_EXIT_OK)
+                return IL_EXIT_BAD_INPUT;
+            o->has_area = true;
+        } else if (!strcmp(a, "--margin")) {
+            ok = cli_parse_double(a, v, 0.0, 1e6, &o->margin);
+        } else if (!strcmp(a, "--spacing")) {
+            ok = cli_parse_double(a, v, 1e-4, 1e6, &o->spacing);
+        } else if (!strcmp(a, "--points")) {
+            o->points = v;
+        } else if (!strcmp(a, "--samples")) {
+            ok = cli_parse_u32(a, v, 1, 1u << 24, &o->desc.samples);
+        } else if (!strcmp(a, "--max-depth")) {
+            ok = cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth);
+        } else if (!strcmp(a, "--sampler")) {
+            if (!strcmp(v, "sobol") || !strcmp(v, "pcg")) {
+                o->desc.sampler = !strcmp(v, "pcg") ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL;
+            } else {
+                cli_error("--sampler: expected sobol or pcg, got '%s'", v);
+                ok = false;
+            }
+        } else {
+            o->output = v;
+        }
+        if (!ok)
+            return IL_EXIT_BAD_INPUT;
+    }
+    if (cli_require_scene("illuminance", o->scene) != IL_EXIT_OK)
+        return IL_EXIT_USAGE;
+    if (o->has_plane == (o->points != NULL)) {
+        cli_error("illuminance: give either --plane AXIS=VALUE or --points FILE (see 'illum "
+                  "illuminance --help')");
+        return IL_EXIT_USAGE;
+    }
+    if (o->points && (o->has_area || o->margin > 0.0 || o->spacing > 0.0)) {
+        cli_error("illuminance: --area, --margin and --spacing shape a --plane grid, not --points");
+        return IL_EXIT_USAGE;
+    }
+    return cli_env_check("illuminance", &o->env);
+}
+
+/* The progress line on a terminal; Ctrl-C stops at the next round. */
+static bool on_progress(double fraction, double seconds, void *user)
+{
+    return cli_solve_line_update(user, seconds, false, "illuminance: %3.0f%%, %.1f s",
+                                 100.0 * fraction, seconds);
+}
+
+static int write_csv(const char *path, const cli_sensor_grid *g, const il_illuminance *r)
+{
+    size_t cap = 160 * g->count + 128, len = 0;
+    char *text = malloc(cap);
+    if (!text) {
+        cli_error("%s: out of memory", path);
+        return IL_EXIT_RUNTIME;
+    }
+    len += (size_t)snprintf(text, cap,
+                            "x,y,z,nx,ny,nz,lux,lux_error,irradiance_r,irradiance_g,irradiance_b\n");
+    for (size_t i = 0; i < g->count; i++) {
+        il_vec3 p = g->sensors[i].position, n = g->sensors[i].normal;
+        len += (size_t)snprintf(text + len, cap - len, "%g,%g,%g,%g,%g,%g,%.6g,%.3g,%.6g,%.6g,%.6g\n",
+                                (double)p.x, (double)p.y, (double)p.z, (double)n.x, (double)n.y,
+                                (double)n.z, (double)r[i].lux, (double)r[i].lux_error,
+                                (double)r[i].irradiance.x, (double)r[i].irradiance.y,
+                                (double)r[i].irradiance.z);
+    }
+    bool ok = cli_write_text_atomic(path, text);
+    free(text);
+    return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
+}
+
+static float axis_coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
+
+static void print_summary(const options *o, const cli_sensor_grid *g, const il_illuminance *r,
+                          const il_illuminance_stats *st)
+{
+    static const char names[] = "xyz";
+    size_t lo = 0, hi = 0, dark = 0;
+    double sum = 0.0, worst_rel = 0.0;
+    for (size_t i = 0; i < g->count; i++) {
+        sum += r[i].lux;
+        dark += r[i].lux == 0.0f;
+        lo = r[i].lux < r[lo].lux ? i : lo;
+        hi = r[i].lux > r[hi].lux ? i : hi;
+        if (r[i].lux > 0.0f)
+            worst_rel = fmax(worst_rel, r[i].lux_error / r[i].lux);
+    }
+    double avg = sum / (double)g->count;
+    if (g->cols)
+        printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
+               names[o->plane.axis], (double)o->plane.value, o->plane.sign > 0 ? '+' : '-',
+               names[o->plane.axis], g->cols, g->rows, g->cell[0], g->cell[1]);
+    else
+        printf("%zu sensors from %s\n", g->count, o->points);
+    il_vec3 pl = g->sensors[lo].position, ph = g->sensors[hi].position;
+    printf("average     %.4g lx\n", avg);
+    printf("minimum     %.4g lx at (%g, %g, %g)\n", (double)r[lo].lux, (double)pl.x, (double)pl.y,
+           (double)pl.z);
+    printf("maximum     %.4g lx at (%g, %g, %g)\n", (double)r[hi].lux, (double)ph.x, (double)ph.y,
+           (double)ph.z);
+    if (avg > 0.0)
+        printf("uniformity  %.3f (minimum / average), %.3f (minimum / maximum)\n",
+               (double)r[lo].lux / avg, r[hi].lux > 0.0f ? (double)r[lo].lux / r[hi].lux : 0.0);
+    printf("noise       %u samples a sensor; standard error at most %.2g%% of a reading\n",
+           st->samples, 100.0 * worst_rel);
+    /* The readings as a plan when the grid fits 80 columns: rows from the
+     * largest second coordinate down, as a plan is drawn. */
+    if (g->cols && g->cols <= 10 && g->rows <= 40) {
+        printf("\nlux, %c across (%.3g .. %.3g), %c down (%.3g .. %.3g):\n", names[g->axes[0]],
+               (double)axis_coord(g->sensors[0].position, g->axes[0]),
+               (double)axis_coord(g->sensors[g->cols - 1].position, g->axes[0]), names[g->axes[1]],
+               (double)axis_coord(g->sensors[g->count - 1].position, g->axes[1]),
+               (double)axis_coord(g->sensors[0].position, g->axes[1]));
+        for (uint32_t row = g->rows; row-- > 0;) {
+            for (uint32_t c = 0; c < g->cols; c++)
+                printf("%8.4g", (double)r[(size_t)row * g->cols + c].lux);
+            putchar('\n');
+        }
+    }
+    if (dark && !o->run_opts.quiet)
+        fprintf(stderr, "illum: warning: %zu of %zu sensors read 0 lx: inside an object, or "
+                "facing away from all light?\n", dark, g->count);
+}
+
+int cmd_illuminance(int argc, char **argv)
+{
+    options o;
+    memset(&o, 0, sizeof o);
+    int rc = parse_options(argc, argv, &o);
+    if (rc != IL_EXIT_OK)
+        return rc < 0 ? IL_EXIT_OK : rc;
+    const char *outputs[] = {o.output};
+    if ((rc = cli_check_outputs(outputs, 1)) != IL_EXIT_OK)
+        return rc;
+
+    cli_sensor_grid g = {0};
+    if (o.points && (rc = cli_read_sensors(o.points, &g)) != IL_EXIT_OK) {
+        free(g.sensors);
+        return rc;
+    }
+    il_scene *scene = NULL;
+    if ((rc = cli_load_scene_env(o.scene, o.run_opts.quiet, &o.env, &scene)) != IL_EXIT_OK) {
+        free(g.sensors);
+        return rc;
+    }
+    if (o.has_plane) {
+        if (!o.has_area) {
+            il_scene_info in;
+            il_scene_get_info(scene, &in);
+            cli_plane_area(&o.plane, in.bounds_min, in.bounds_max, o.margin, o.area);
+        } else {
+            o.area[0] += o.margin, o.area[1] += o.margin, o.area[2] -= o.margin, o.area[3] -= o.margin;
+        }
+        rc = cli_plane_grid(&o.plane, o.area, o.spacing, &g);
+    }
+    il_illuminance *r = rc == IL_EXIT_OK ? calloc(g.count, sizeof *r) : NULL;
+    if (rc == IL_EXIT_OK && !r) {
+        cli_error("out of memory for %zu readings", g.count);
+        rc = IL_EXIT_RUNTIME;
+    }
+    if (rc != IL_EXIT_OK) {
+        il_scene_release(scene);
+        free(g.sensors);
+        return rc;
+    }
+
+    cli_solve_line line;
+    struct sigaction old_int;
+    cli_interrupted = 0;
+    cli_interrupt_catch(o.run_opts.quiet, &old_int);
+    cli_solve_line_start(&line, o.run_opts.quiet, &cli_interrupted);
+    o.desc.seed = o.run.seed;
+    o.desc.threads = o.run.threads;
+    o.desc.progress = on_progress;
+    o.desc.progress_user = &line;
+    il_illuminance_stats st;
+    il_error err = {0};
+    il_status s = il_measure_illuminance(scene, g.sensors, g.count, &o.desc, r, &st, &err);
+    cli_solve_line_end(&line);
+    cli_interrupt_release(&old_int);
+    if (s != IL_OK) {
+        cli_error("%s", err.message);
+        rc = cli_exit_for(s);
+    } else {
+        print_summary(&o, &g, r, &st);
+        if (!o.run_opts.quiet)
+            fprintf(stderr, "illuminance: %.2f s, %.3g M rays/s%s\n", st.seconds,
+                    st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0,
+                    st.nonfinite_samples ? " (some samples were NaN or infinite and were dropped)" : "");
+        if (o.output)
+            rc = write_csv(o.output, &g, r);
+        if (rc == IL_EXIT_OK && cli_interrupted)
+            rc = IL_EXIT_INTERRUPTED;
+    }
+    free(r);
+    free(g.sensors);
+    il_scene_release(scene);
+    return rc;
+}

@@ -1,0 +1,254 @@
+/* il_measure_illuminance against analytic irradiance:
+ * - a point light: E = I cos(theta) / d^2 (the inverse-square cosine law);
+ * - a spot light: the same times its cos^n profile, zero outside its cone;
+ * - a directional light: E = E0 cos(theta);
+ * - a square emitter of radiance L above the sensor: E = pi L F, F the
+ *   point-to-parallel-rectangle form factor (Howell's catalogue, B-3:
+ *   F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2)
+ *   atan(X/sqrt(1+Y^2))] below a corner, X = a/h, Y = b/h);
+ * - the furnace: inside a closed box whose walls emit Le and reflect rho,
+ *   the radiance is Le/(1-rho) everywhere, so E = pi Le/(1-rho);
+ * and against the path tracer: on the Cornell box's floor, the floor's
+ * radiance rho E / pi (Lambert).  Lux are 683 lm/W times the Rec.709
+ * luminance.  Readings do not depend on the thread count; a stopped
+ * measurement keeps the samples taken. */
+#include "pt_scenes.h"
+#include "scene/scene.h"
+
+static double luminance(il_vec3 e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
+
+static il_scene *dark_floor_scene(void)
+{
+    il_scene *s = new_scene();
+    uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0.0f)});
+    add_floor(s, -10.0f, 20.0f, black);
+    return s;
+}
+
+static void measure(const il_scene *s, const il_sensor *sn, size_t n, il_illuminance_desc d,
+                    il_illuminance *out, il_illuminance_stats *st)
+{
+    CHECK_OK(il_measure_illuminance(s, sn, n, &d, out, st, &g_err), &g_err);
+}
+
+/* Every channel of a reading against the expected irradiance, and its lux. */
+static void check_reading(const char *what, const il_illuminance *r, il_vec3 expect, double rel)
+{
+    printf("%s: E = (%.6g, %.6g, %.6g), expected (%.6g, %.6g, %.6g); %.6g lx +- %.3g\n", what,
+           (double)r->irradiance.x, (double)r->irradiance.y, (double)r->irradiance.z,
+           (double)expect.x, (double)expect.y, (double)expect.z, (double)r->lux,
+           (double)r->lux_error);
+    double abs_tol = 1e-6;
+    CHECK_NEAR(r->irradiance.x, expect.x, rel * expect.x + abs_tol);
+    CHECK_NEAR(r->irradiance.y, expect.y, rel * expect.y + abs_tol);
+    CHECK_NEAR(r->irradiance.z, expect.z, rel * expect.z + abs_tol);
+    CHECK_NEAR(r->lux, 683.0 * luminance(expect), rel * 683.0 * luminance(expect) + 1e-3);
+}
+
+static void test_point_and_spot(void)
+{
+    const il_vec3 I = v3(3.0f, 2.0f, 1.0f);
+    il_scene *s = dark_floor_scene();
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 2, 0),
+                                                    .intensity = I}, &g_err), &g_err);
+    commit(s);
+    const il_sensor sn[4] = {
+        {v3(0, 0, 0), v3(0, 1, 0)},
+        {v3(1.5f, 0, 0), v3(0, 3, 0)},           /* normals need not be unit */
+        {v3(-1, 0, 0), v3(1, 1, 0)},             /* tilted towards the light */
+        {v3(0, 0, 0), v3(0, -1, 0)},             /* facing away */
+    };
+    il_illuminance r[4];
+    il_illuminance_stats st;
+    measure(s, sn, 4, (il_illuminance_desc){.samples = 256, .seed = 1}, r, &st);
+    CHECK(st.samples == 256 && st.nonfinite_samples == 0);
+    check_reading("point, below", &r[0], v3_scale(I, 1.0f / 4.0f), 1e-4);
+    /* d^2 = 2^2 + 1.5^2 = 6.25, cos = 2/2.5 */
+    check_reading("point, 1.5 m aside", &r[1], v3_scale(I, 0.8f / 6.25f), 1e-4);
+    /* to the light (1,2,0)/sqrt 5; normal (1,1,0)/sqrt 2: cos = 3/sqrt 10, d^2 = 5 */
+    check_reading("point, tilted", &r[2], v3_scale(I, (float)(3.0 / sqrt(10.0) / 5.0)), 1e-4);
+    check_reading("point, facing away", &r[3], v3s(0.0f), 0.0);
+    CHECK(r[0].lux_error < 1e-3f * r[0].lux); /* one light, no bounce: every sample agrees */
+    il_scene_release(s);
+
+    s = dark_floor_scene();
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_SPOT, .position = v3(0, 2, 0),
+                                                    .intensity = I, .spot_angle = 30.0f,
+                                                    .spot_exponent = 2.0f}, &g_err), &g_err);
+    commit(s);
+    const il_sensor spot[2] = {{v3(0.5f, 0, 0), v3(0, 1, 0)}, {v3(2, 0, 0), v3(0, 1, 0)}};
+    measure(s, spot, 2, (il_illuminance_desc){.samples = 64}, r, &st);
+    double d2 = 4.25, cosa = 2.0 / sqrt(d2); /* 14 degrees off the axis; the sensor's cos too */
+    check_reading("spot, inside the cone", &r[0], v3_scale(I, (float)(cosa * cosa * cosa / d2)), 1e-4);
+    check_reading("spot, outside the cone", &r[1], v3s(0.0f), 0.0);
+    il_scene_release(s);
+}
+
+static void test_directional(void)
+{
+    il_scene *s = dark_floor_scene();
+    const il_vec3 E0 = v3(2.0f, 1.0f, 0.5f);
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_DIRECTIONAL,
+                                                    .direction = v3(0, -1, -1), .intensity = E0},
+                                &g_err), &g_err);
+    commit(s);
+    const il_sensor sn[2] = {{v3(0, 0, 0), v3(0, 1, 0)}, {v3(3, 1, 2), v3(0, 1, 1)}};
+    il_illuminance r[2];
+    measure(s, sn, 2, (il_illuminance_desc){.samples = 64}, r, NULL);
+    check_reading("sun, horizontal sensor", &r[0], v3_scale(E0, (float)(1.0 / sqrt(2.0))), 1e-4);
+    check_reading("sun, facing it", &r[1], E0, 1e-4);
+    il_scene_release(s);
+}
+
+/* Howell B-3: a differential area below a corner of a parallel a x b
+ * rectangle at height h. */
+static double corner_ff(double a, double b, double h)
+{
+    double X = a / h, Y = b / h, sx = sqrt(1.0 + X * X), sy = sqrt(1.0 + Y * Y);
+    return (X / sx * atan(Y / sx) + Y / sy * atan(X / sy)) / (2.0 * PI_D);
+}
+
+static void test_area_light(void)
+{
+    il_scene *s = dark_floor_scene();
+    const il_vec3 L = v3(2.0f, 1.5f, 1.0f);
+    uint32_t lamp = add_material(s, (il_material_desc){.diffuse = v3s(0.0f), .emission = L});
+    /* A 1 m square at height 1, facing down (normal (0,-1,0)). */
+    add_quad(s, v3(0, 1, 0), v3(0.5f, 0, 0), v3(0, 0, 0.5f), lamp);
+    commit(s);
+    const il_sensor sn[2] = {{v3(0, 0, 0), v3(0, 1, 0)}, {v3(0.5f, 0, 0), v3(0, 1, 0)}};
+    il_illuminance r[2];
+    il_illuminance_stats st;
+    measure(s, sn, 2, (il_illuminance_desc){.samples = 4096, .seed = 7}, r, &st);
+    double centre = 4.0 * corner_ff(0.5, 0.5, 1.0), edge = 2.0 * corner_ff(1.0, 0.5, 1.0);
+    check_reading("square lamp, below its centre", &r[0], v3_scale(L, (float)(PI_D * centre)), 0.01);
+    check_reading("square lamp, below an edge", &r[1], v3_scale(L, (float)(PI_D * edge)), 0.01);
+    CHECK(r[0].lux_error > 0.0f && r[0].lux_error < 0.01f * r[0].lux);
+    il_scene_release(s);
+}
+
+static il_scene *furnace_box(il_vec3 e, float rho)
+{
+    il_scene *s = new_scene();
+    uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho), .emission = e});
+    add_quad(s, v3(0, -1, 0), v3(0, 0, 1), v3(1, 0, 0), m);
+    add_quad(s, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), m);
+    add_quad(s, v3(-1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), m);
+    add_quad(s, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), m);
+    add_quad(s, v3(0, 0, -1), v3(1, 0, 0), v3(0, 1, 0), m);
+    add_quad(s, v3(0, 0, 1), v3(0, 1, 0), v3(1, 0, 0), m);
+    commit(s);
+    return s;
+}
+
+static void test_furnace_and_threads(void)
+{
+    const il_vec3 e = v3(1.0f, 0.5f, 0.25f);
+    const float rho = 0.5f;
+    il_scene *s = furnace_box(e, rho);
+    const il_sensor sn[3] = {
+        {v3(0.2f, -0.3f, 0.1f), v3(0.3f, 0.8f, -0.5f)},
+        {v3(0, -1, 0), v3(0, 1, 0)},             /* on the floor */
+        {v3(0.9f, 0.9f, -0.9f), v3(-1, 0, 0)},   /* near a corner */
+    };
+    il_illuminance one[3], two[3];
+    il_illuminance_desc d = {.samples = 2048, .max_depth = 64, .seed = 5, .threads = 1};
+    measure(s, sn, 3, d, one, NULL);
+    d.threads = 2;
+    measure(s, sn, 3, d, two, NULL);
+    il_vec3 expect = v3_scale(e, (float)(PI_D / (1.0 - rho)));
+    for (int i = 0; i < 3; i++)
+        check_reading("furnace", &one[i], expect, 0.01);
+    CHECK(memcmp(one, two, sizeof one) == 0);
+    il_scene_release(s);
+}
+
+/* The floor of the Cornell box: the path tracer's radiance towards a
+ * point of it against rho E / pi from a sensor lying there. */
+static void test_against_path_tracer(void)
+{
+    il_scene *s = load_committed("cornell");
+    if (!s)
+        return;
+    const il_vec3 p = v3(0.08f, 0.0f, 0.5f), eye = v3(0.28f, 0.4f, 0.3f);
+    il_ray ray = {.org = eye, .dir = v3_normalize(v3_sub(p, eye)), .tmax = INFINITY};
+    il_hit hit;
+    CHECK(il_trace_closest(s->tracer, &ray, &hit));
+    il_surface surf;
+    il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
+    CHECK_NEAR(surf.p.y, 0.0, 1e-4);
+    il_sensor sn = {surf.p, surf.ng};
+    il_illuminance r;
+    measure(s, &sn, 1, (il_illuminance_desc){.samples = 16384, .seed = 11}, &r, NULL);
+
+    const uint32_t n = 16384;
+    double sum[3] = {0, 0, 0};
+    uint64_t rays = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        il_sampler smp;
+        il_sampler_start(&smp, IL_SAMPLER_SOBOL, 11, 0, k);
+        il_vec3 L = il_pt_radiance(s, eye, ray.dir, &smp, 8, IL_PT_MIS, &rays);
+        sum[0] += L.x, sum[1] += L.y, sum[2] += L.z;
+    }
+    il_vec3 rho = surf.material->diffuse;
+    il_vec3 expect = {(float)(sum[0] / n * PI_D / rho.x), (float)(sum[1] / n * PI_D / rho.y),
+                      (float)(sum[2] / n * PI_D / rho.z)};
+    /* Both at max depth 8: the floor is the camera path's first bounce as
+     * the sensor is the sensor path's. */
+    check_reading("Cornell floor against the path tracer (pi L / rho)", &r, expect, 0.02);
+    il_scene_release(s);
+}
+
+static bool stop_at_once(double fraction, double seconds, void *user)
+{
+    (void)fraction, (void)seconds;
+    ++*(int *)user;
+    return false;
+}
+
+static void test_stop_and_bad_input(void)
+{
+    il_scene *s = dark_floor_scene();
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 2, 0),
+                                                    .intensity = v3s(1.0f)}, &g_err), &g_err);
+    commit(s);
+    il_sensor sn = {v3(0, 0, 0), v3(0, 1, 0)};
+    il_illuminance r;
+    il_illuminance_stats st;
+    int calls = 0;
+    measure(s, &sn, 1, (il_illuminance_desc){.samples = 1u << 18, .progress = stop_at_once,
+                                             .progress_user = &calls}, &r, &st);
+    printf("stopped after %d progress call(s): %u samples\n", calls, st.samples);
+    CHECK(calls == 1 && st.samples > 0 && st.samples < (1u << 18) && st.samples % 64 == 0);
+    CHECK_REL(r.irradiance.x, 0.25, 1e-4);
+
+    const il_sensor bad[3] = {{v3(NAN, 0, 0), v3(0, 1, 0)}, {v3(0, 0, 0), v3(0, 0, 0)},
+                              {v3(0, 0, 0), v3(0, INFINITY, 0)}};
+    for (int i = 0; i < 3; i++) {
+        il_error err = {0};
+        il_illuminance_desc d = {.samples = 4};
+        CHECK(il_measure_illuminance(s, &bad[i], 1, &d, &r, NULL, &err) == IL_ERR_INVALID);
+        printf("bad sensor %d: %s\n", i, err.message);
+    }
+    il_error err = {0};
+    il_illuminance_desc many = {.samples = (1u << 30) + 1};
+    CHECK(il_measure_illuminance(s, &sn, 1, &many, &r, NULL, &err) == IL_ERR_INVALID);
+    CHECK(il_measure_illuminance(s, NULL, 1, &many, &r, NULL, &err) == IL_ERR_INVALID);
+    il_scene_release(s);
+
+    il_scene *open = dark_floor_scene(); /* never committed */
+    il_illuminance_desc d = {.samples = 4};
+    CHECK(il_measure_illuminance(open, &sn, 1, &d, &r, NULL, &err) == IL_ERR_INVALID);
+    il_scene_release(open);
+}
+
+int main(void)
+{
+    test_point_and_spot();
+    test_directional();
+    test_area_light();
+    test_furnace_and_threads();
+    test_against_path_tracer();
+    test_stop_and_bad_input();
+    return check_report();
+}
