@@ -175,12 +175,13 @@ int cli_read_sensors(const char *path, cli_sensor_grid *g)
         }
         il_sensor sn = {{(float)v[0], (float)v[1], (float)v[2]}, {0.0f, 1.0f, 0.0f}};
         if (n == 6) {
-            sn.normal = (il_vec3){(float)v[3], (float)v[4], (float)v[5]};
-            if (sn.normal.x == 0.0f && sn.normal.y == 0.0f && sn.normal.z == 0.0f) {
+            double len = sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+            if (!(len > 0.0) || !isfinite(len)) {
                 cli_error("%s:%lu: the normal is zero", path, no);
                 rc = IL_EXIT_BAD_INPUT;
                 break;
             }
+            sn.normal = (il_vec3){(float)(v[3] / len), (float)(v[4] / len), (float)(v[5] / len)};
         }
         if (g->count == MAX_SENSORS) {
             cli_error("%s: more than %u sensors", path, MAX_SENSORS);

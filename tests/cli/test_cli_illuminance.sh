@@ -1,0 +1,112 @@
+# `illum illuminance` end to end: the help, a plane's grid (given spacing
+# and EN 12464-1's default cell), sensors from a file, readings against the
+# inverse-square law, the CSV, thread independence, Ctrl-C, and bad input
+# that stops before any output is written.
+. "$(dirname "$0")/lib.bash"
+
+# A 4 m square floor under a 10 W/sr point light 2 m up.  A sensor on the
+# floor facing up sees no other surface, so it reads the direct light only:
+# E = I cos / d^2, 683 lm/W.
+cat > lamp.json <<'JSON'
+{"meshes": [{"shape": "quad", "size": 4}],
+ "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 10}]}
+JSON
+
+expect_exit 0 "illuminance --help" -- "$ILLUM" illuminance --help
+for o in --plane --area --margin --spacing --points --samples --max-depth -o; do
+    expect_stdout -- "$o" "illuminance help lists $o"
+done
+expect_exit 0 "help illuminance" -- "$ILLUM" help illuminance
+expect_stdout "--plane AXIS=VALUE" "help illuminance"
+expect_exit 0 "illum --help" -- "$ILLUM" --help
+expect_stdout "illuminance SCENE" "illum --help lists illuminance"
+
+# One sensor below the lamp: 683 * 10 / 4 = 1707.5 lx.
+expect_exit 0 "one sensor" -- "$ILLUM" illuminance lamp.json --plane y=0 --area -0.5,-0.5,0.5,0.5 \
+    --spacing 1 --samples 16 -o one.csv
+expect_stdout "1 sensors on y = 0 facing +y: 1 x 1 cells of 1 x 1 m" "one sensor: the grid"
+expect_stdout "average     1708 lx" "one sensor: 1707.5 lx"
+expect_file one.csv "one sensor"
+checks=$((checks + 1))
+head -1 one.csv | grep -q '^x,y,z,nx,ny,nz,lux,lux_error,irradiance_r,irradiance_g,irradiance_b$' ||
+    fail "one.csv: header"
+checks=$((checks + 1))
+awk -F, 'NR == 2 { d = $7 - 1707.5; exit !(d < 0.01 && d > -0.01 && $9 == 2.5) }' one.csv ||
+    fail "one.csv: $(sed -n 2p one.csv), expected 1707.5 lx and 2.5 W/m^2"
+
+# The scene's bounds with 0.5 m cells: 8 x 8; EN 12464-1's cell for 4 m
+# (0.2 * 5^log10 4 = 0.53 m) gives 8 x 8 too; a margin of 1 m leaves 2 m,
+# whose cell is 0.2 * 5^log10 2 = 0.32 m: 6 x 6.
+expect_exit 0 "grid 0.5 m" -- "$ILLUM" illuminance lamp.json --plane y=0 --spacing 0.5 --samples 8
+expect_stdout "64 sensors on y = 0 facing +y: 8 x 8 cells of 0.5 x 0.5 m" "grid 0.5 m"
+expect_stdout "uniformity" "grid 0.5 m"
+expect_stdout "^lux, x across" "grid 0.5 m: the plan"
+expect_exit 0 "default cell" -- "$ILLUM" illuminance lamp.json --plane y=0 --samples 8
+expect_stdout "64 sensors on y = 0 facing +y: 8 x 8 cells of 0.5 x 0.5 m" "default cell"
+expect_exit 0 "margin" -- "$ILLUM" illuminance lamp.json --plane y=0 --margin 1 --samples 8
+expect_stdout "36 sensors on y = 0 facing +y: 6 x 6 cells of 0.333 x 0.333 m" "margin 1"
+# Facing down below the floor: it has no back face to light, and nothing
+# below emits.
+expect_exit 0 "facing down" -- "$ILLUM" illuminance lamp.json --plane -y=-0.5 --samples 8
+expect_stdout "facing -y" "facing down"
+expect_stdout "average     0 lx" "facing down"
+expect_stderr "warning: 64 of 64 sensors read 0 lx" "facing down"
+
+# Sensors from a file: a header, a comment, spaces and commas; 1 m aside
+# the reading is 683 * 10 * 2 / 5^1.5 = 1221.79 lx.
+printf 'x,y,z,nx,ny,nz\n# under the lamp\n0 0 0\n1,0,0, 0,2,0\n\n' > points.csv
+expect_exit 0 "points" -- "$ILLUM" illuminance lamp.json --points points.csv --samples 16 -o points.out.csv
+expect_stdout "2 sensors from points.csv" "points"
+checks=$((checks + 1))
+awk -F, 'NR == 3 { d = $7 - 1221.79; exit !(d < 0.01 && d > -0.01 && $5 == 1) }' points.out.csv ||
+    fail "points.out.csv: $(sed -n 3p points.out.csv), expected 1221.79 lx and a unit normal"
+
+# The same readings with one thread and two (the Cornell box: noisy paths).
+expect_exit 0 "1 thread" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 64 --threads 1 -q -o t1.csv
+expect_exit 0 "2 threads" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 64 --threads 2 -q -o t2.csv
+checks=$((checks + 1))
+cmp -s t1.csv t2.csv || fail "readings differ between 1 and 2 threads"
+checks=$((checks + 1))
+[ "$(wc -l < t1.csv)" = 17 ] || fail "t1.csv: $(wc -l < t1.csv) lines, expected a header and 16"
+
+# Ctrl-C: stops at the next round and writes the readings so far.
+expect_interrupted 1 "interrupted" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 16777216 \
+    -o stopped.csv
+expect_file stopped.csv "interrupted: the readings so far"
+
+# Bad input: a clear message, the exit status, no output file.
+expect_exit 2 "neither --plane nor --points" -- "$ILLUM" illuminance lamp.json -o bad.csv
+expect_exit 2 "both --plane and --points" -- "$ILLUM" illuminance lamp.json --plane y=0 --points points.csv -o bad.csv
+expect_exit 2 "--spacing with --points" -- "$ILLUM" illuminance lamp.json --points points.csv --spacing 1 -o bad.csv
+expect_exit 2 "unknown option" -- "$ILLUM" illuminance lamp.json --plane y=0 --bogus -o bad.csv
+expect_exit 2 "no scene" -- "$ILLUM" illuminance --plane y=0 -o bad.csv
+expect_exit 1 "bad plane" -- "$ILLUM" illuminance lamp.json --plane q=1 -o bad.csv
+expect_stderr "expected AXIS=VALUE" "bad plane"
+expect_exit 1 "plane without a number" -- "$ILLUM" illuminance lamp.json --plane y= -o bad.csv
+expect_exit 1 "area of three numbers" -- "$ILLUM" illuminance lamp.json --plane y=0 --area 0,0,1 -o bad.csv
+expect_exit 1 "area inside out" -- "$ILLUM" illuminance lamp.json --plane y=0 --area 1,1,0,0 -o bad.csv
+expect_exit 1 "margin too wide" -- "$ILLUM" illuminance lamp.json --plane y=0 --margin 2 -o bad.csv
+expect_stderr "the measuring area is empty" "margin too wide"
+expect_exit 1 "spacing 0" -- "$ILLUM" illuminance lamp.json --plane y=0 --spacing 0 -o bad.csv
+expect_exit 1 "too many sensors" -- "$ILLUM" illuminance lamp.json --plane y=0 --spacing 0.0001 -o bad.csv
+expect_exit 1 "samples 0" -- "$ILLUM" illuminance lamp.json --plane y=0 --samples 0 -o bad.csv
+expect_exit 1 "max depth 0" -- "$ILLUM" illuminance lamp.json --plane y=0 --max-depth 0 -o bad.csv
+expect_exit 1 "missing scene" -- "$ILLUM" illuminance missing.obj --plane y=0 -o bad.csv
+expect_exit 1 "missing points file" -- "$ILLUM" illuminance lamp.json --points missing.txt -o bad.csv
+expect_stderr "missing.txt: cannot open" "missing points file"
+printf '0 0 0\n1 2 3 4\n' > four.txt
+expect_exit 1 "four numbers" -- "$ILLUM" illuminance lamp.json --points four.txt -o bad.csv
+expect_stderr "four.txt:2: expected" "four numbers: the line"
+printf '0 nan 0\n' > nan.txt
+expect_exit 1 "NaN" -- "$ILLUM" illuminance lamp.json --points nan.txt -o bad.csv
+printf '0 0 0 0 0 0\n' > zero.txt
+expect_exit 1 "zero normal" -- "$ILLUM" illuminance lamp.json --points zero.txt -o bad.csv
+expect_stderr "zero.txt:1: the normal is zero" "zero normal"
+printf '# nothing\n' > empty.txt
+expect_exit 1 "no sensor" -- "$ILLUM" illuminance lamp.json --points empty.txt -o bad.csv
+printf '0 0 0 x\n' > junk.txt
+expect_exit 1 "junk" -- "$ILLUM" illuminance lamp.json --points junk.txt -o bad.csv
+expect_no_file bad.csv "bad input"
+expect_exit 1 "output in a missing folder" -- "$ILLUM" illuminance lamp.json --plane y=0 -o no/such/dir.csv
+
+finish
