@@ -899,6 +899,14 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
                                  const il_illuminance_desc *desc, il_illuminance *out,
                                  il_illuminance_stats *stats, il_error *err);
 
+/* The sensors the scene's camera sees in a width x height image (a false-colour
+ * illuminance view): for each pixel, row by row from the top, the surface
+ * point at the centre of its view, facing the camera (the shading normal,
+ * turned to the camera's side).  seen[i] is false, and sensors[i] zero, where
+ * the pixel sees no surface. */
+il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t height,
+                            il_sensor *sensors, bool *seen, il_error *err);
+
 /* ------------------------------------------------------------------- bake */
 
 /* Light written onto the geometry: the scene's meshes as the method meshed

@@ -387,6 +387,35 @@ int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing,
  * omitted), '#' comments, an optional header line.  Prints the error. */
 int cli_read_sensors(const char *path, cli_sensor_grid *g);
 
+/* False colour for `illum illuminance --view` (cli_falsecolor.c): the
+ * picture of w x h lux values (row by row from the top; seen false: no
+ * surface, dark grey), 0 to scale_max lx on a linear palette from dark blue
+ * to red, and a legend strip on its right (the bar, "lx", six labelled
+ * ticks), as linear values for il_image_write's PNG.  False when out of
+ * memory. */
+bool cli_falsecolor(const float *lux, const bool *seen, uint32_t w, uint32_t h, double scale_max,
+                    il_image *out);
+/* A round top for the scale: 1, 2, 2.5 or 5 times a power of ten, at or
+ * above the 99th percentile of the seen values (1 when there are none). */
+double cli_falsecolor_scale(const float *lux, const bool *seen, size_t n);
+
+/* `illum illuminance --view` (cli_illuminance_view.c): a sensor on the
+ * surface each pixel sees, and the pictures of their readings. */
+typedef struct cli_view {
+    uint32_t width, height;
+    uint32_t *pixel_of;              /* malloc'd: the pixel of each sensor */
+} cli_view;
+
+/* Fills g with a sensor for every pixel that sees a surface.  Prints the error. */
+int cli_view_sensors(const il_scene *scene, uint32_t width, uint32_t height, cli_sensor_grid *g,
+                     cli_view *view);
+/* Prints what the view holds and writes each output: .png in false colour
+ * (0 to scale_max lx; 0: cli_falsecolor_scale), .exr/.hdr/.pfm with the lux
+ * in every channel.  Returns the exit status. */
+int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_illuminance *r,
+                    double scale_max, const char *const *outputs, int num_outputs,
+                    uint32_t samples, bool quiet);
+
 int cmd_illuminance(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);

@@ -4,11 +4,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "cli/cli.h"
 
 static const char *help =
-    "usage: illum illuminance SCENE (--plane AXIS=VALUE | --points FILE) [options]\n"
+    "usage: illum illuminance SCENE (--plane AXIS=VALUE | --points FILE | --view) [options]\n"
     "\n"
     "Measures the illuminance (lux) that a light meter would read, from every light\n"
     "of the scene and their interreflections, with the path tracer's paths.\n"
@@ -26,20 +27,33 @@ static const char *help =
     "                         default: EN 12464-1's largest cell, 0.2 * 5^log10(d)\n"
     "  --points FILE          sensors from a text file: one 'x y z [nx ny nz]' a line\n"
     "                         (commas or spaces; normal +y when omitted; '#' comments)\n"
+    "  --view                 a sensor on the surface each pixel of the camera sees:\n"
+    "                         a false-colour picture (PNG, with a legend) or the lux\n"
+    "                         values (EXR, HDR, PFM); --width W --height H (default\n"
+    "                         512), --camera-pos/-target/-up, --fov, --camera-file as\n"
+    "                         for render; --scale-max LUX tops the palette (default:\n"
+    "                         a round value at the 99th percentile)\n"
     "options:\n"
-    "  --samples N            paths per sensor (default 1024)\n"
+    "  --samples N            paths per sensor (default 1024; with --view 64)\n"
     "  --max-depth D          bounces, the sensor counting as the first: 1 is direct\n"
     "                         light only (default 8)\n"
     "  --sampler sobol|pcg    (default sobol)\n"
     "  --seed S  --threads T  --quiet\n"
     "  -o OUT.csv             every reading: x,y,z,nx,ny,nz,lux,lux_error,\n"
-    "                         irradiance_r,irradiance_g,irradiance_b (W/m^2)\n";
+    "                         irradiance_r,irradiance_g,irradiance_b (W/m^2);\n"
+    "                         with --view: -o OUT.png|exr|hdr|pfm, up to 4 times\n";
+
+#define MAX_OUTPUTS 4
 
 typedef struct options {
-    const char *scene, *points, *output;
-    bool has_plane, has_area;
+    const char *scene, *points;
+    const char *outputs[MAX_OUTPUTS];
+    int num_outputs;
+    bool has_plane, has_area, view;
     cli_plane plane;
-    double area[4], margin, spacing;
+    double area[4], margin, spacing, scale_max;
+    uint32_t width, height;
+    cli_camera_options camera;
     il_illuminance_desc desc;
     il_render_desc run;               /* --seed, --threads through cli_run_option */
     cli_run_options run_opts;
@@ -72,6 +86,7 @@ static int parse_options(int argc, char **argv, options *o)
         const char *a = argv[i], *v = NULL;
         int rc;
         if (cli_env_option(argc, argv, &i, &o->env, &rc) ||
+            cli_camera_option(argc, argv, &i, &o->camera, &rc) ||
             cli_run_option(argc, argv, &i, &o->run, &o->run_opts, &rc)) {
             if (rc != IL_EXIT_OK)
                 return rc;
@@ -82,7 +97,12 @@ static int parse_options(int argc, char **argv, options *o)
             fputs(cli_env_help, stdout);
             return -1;
         }
-        bool takes_value = !strcmp(a, "--plane") || !strcmp(a, "--area") || !strcmp(a, "--margin") ||
+        if (!strcmp(a, "--view")) {
+            o->view = true;
+            continue;
+        }
+        bool takes_value = !strcmp(a, "--width") || !strcmp(a, "--height") ||
+                           !strcmp(a, "--scale-max") || !strcmp(a, "--plane") || !strcmp(a, "--area") || !strcmp(a, "--margin") ||
                            !strcmp(a, "--spacing") || !strcmp(a, "--points") ||
                            !strcmp(a, "--samples") || !strcmp(a, "--max-depth") ||
                            !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output");
@@ -108,6 +128,10 @@ static int parse_options(int argc, char **argv, options *o)
             ok = cli_parse_double(a, v, 1e-4, 1e6, &o->spacing);
         } else if (!strcmp(a, "--points")) {
             o->points = v;
+        } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
+            ok = cli_parse_u32(a, v, 1, 16384, !strcmp(a, "--width") ? &o->width : &o->height);
+        } else if (!strcmp(a, "--scale-max")) {
+            ok = cli_parse_double(a, v, 1e-9, 1e9, &o->scale_max);
         } else if (!strcmp(a, "--samples")) {
             ok = cli_parse_u32(a, v, 1, 1u << 24, &o->desc.samples);
         } else if (!strcmp(a, "--max-depth")) {
@@ -119,22 +143,43 @@ static int parse_options(int argc, char **argv, options *o)
                 cli_error("--sampler: expected sobol or pcg, got '%s'", v);
                 ok = false;
             }
+        } else if (o->num_outputs == MAX_OUTPUTS) {
+            cli_error("illuminance: at most %d outputs", MAX_OUTPUTS);
+            return IL_EXIT_USAGE;
         } else {
-            o->output = v;
+            o->outputs[o->num_outputs++] = v;
         }
         if (!ok)
             return IL_EXIT_BAD_INPUT;
     }
     if (cli_require_scene("illuminance", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    if (o->has_plane == (o->points != NULL)) {
-        cli_error("illuminance: give either --plane AXIS=VALUE or --points FILE (see 'illum "
-                  "illuminance --help')");
+    if (o->has_plane + (o->points != NULL) + o->view != 1) {
+        cli_error("illuminance: give one of --plane AXIS=VALUE, --points FILE and --view (see "
+                  "'illum illuminance --help')");
         return IL_EXIT_USAGE;
     }
-    if (o->points && (o->has_area || o->margin > 0.0 || o->spacing > 0.0)) {
-        cli_error("illuminance: --area, --margin and --spacing shape a --plane grid, not --points");
+    if (!o->has_plane && (o->has_area || o->margin > 0.0 || o->spacing > 0.0)) {
+        cli_error("illuminance: --area, --margin and --spacing shape a --plane grid");
         return IL_EXIT_USAGE;
+    }
+    bool camera = o->camera.file || o->camera.has_pos || o->camera.has_target ||
+                  o->camera.has_up || o->camera.has_fov;
+    if (!o->view && (o->width || o->height || o->scale_max > 0.0 || camera)) {
+        cli_error("illuminance: --width, --height, --scale-max and the camera options go with --view");
+        return IL_EXIT_USAGE;
+    }
+    for (int k = 0; k < o->num_outputs; k++) {
+        const char *dot = strrchr(o->outputs[k], '.');
+        bool csv = dot && !strcasecmp(dot, ".csv");
+        bool image = dot && (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".exr") ||
+                             !strcasecmp(dot, ".hdr") || !strcasecmp(dot, ".pfm"));
+        if (o->view ? !image : !csv) {
+            cli_error("%s: %s", o->outputs[k],
+                      o->view ? "--view writes .png (false colour), .exr, .hdr or .pfm (lux)"
+                              : "the readings are written as .csv (images need --view)");
+            return IL_EXIT_BAD_INPUT;
+        }
     }
     return cli_env_check("illuminance", &o->env);
 }
@@ -222,6 +267,30 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
                 "facing away from all light?\n", dark, g->count);
 }
 
+/* The sensors of the chosen mode: a file's, a plane's grid, or the view's
+ * (view->pixel_of set). */
+static int make_sensors(options *o, il_scene *scene, cli_sensor_grid *g, cli_view *view)
+{
+    if (o->points)
+        return cli_read_sensors(o->points, g);
+    if (o->view) {
+        int rc = cli_camera_apply(scene, &o->camera);
+        if (rc != IL_EXIT_OK)
+            return rc;
+        return cli_view_sensors(scene, o->width ? o->width : 512, o->height ? o->height : 512, g,
+                                view);
+    }
+    if (!o->has_area) {
+        il_scene_info in;
+        il_scene_get_info(scene, &in);
+        cli_plane_area(&o->plane, in.bounds_min, in.bounds_max, o->margin, o->area);
+    } else {
+        o->area[0] += o->margin, o->area[1] += o->margin;
+        o->area[2] -= o->margin, o->area[3] -= o->margin;
+    }
+    return cli_plane_grid(&o->plane, o->area, o->spacing, g);
+}
+
 int cmd_illuminance(int argc, char **argv)
 {
     options o;
@@ -229,31 +298,17 @@ int cmd_illuminance(int argc, char **argv)
     int rc = parse_options(argc, argv, &o);
     if (rc != IL_EXIT_OK)
         return rc < 0 ? IL_EXIT_OK : rc;
-    const char *outputs[] = {o.output};
-    if ((rc = cli_check_outputs(outputs, 1)) != IL_EXIT_OK)
+    if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK ||
+        (rc = cli_check_outputs(o.outputs, o.num_outputs)) != IL_EXIT_OK)
         return rc;
 
-    cli_sensor_grid g = {0};
-    if (o.points && (rc = cli_read_sensors(o.points, &g)) != IL_EXIT_OK) {
-        free(g.sensors);
-        return rc;
-    }
     il_scene *scene = NULL;
-    if ((rc = cli_load_scene_env(o.scene, o.run_opts.quiet, &o.env, &scene)) != IL_EXIT_OK) {
-        free(g.sensors);
+    if ((rc = cli_load_scene_env(o.scene, o.run_opts.quiet, &o.env, &scene)) != IL_EXIT_OK)
         return rc;
-    }
-    if (o.has_plane) {
-        if (!o.has_area) {
-            il_scene_info in;
-            il_scene_get_info(scene, &in);
-            cli_plane_area(&o.plane, in.bounds_min, in.bounds_max, o.margin, o.area);
-        } else {
-            o.area[0] += o.margin, o.area[1] += o.margin, o.area[2] -= o.margin, o.area[3] -= o.margin;
-        }
-        rc = cli_plane_grid(&o.plane, o.area, o.spacing, &g);
-    }
-    il_illuminance *r = rc == IL_EXIT_OK ? calloc(g.count, sizeof *r) : NULL;
+    cli_sensor_grid g = {0};
+    cli_view view = {0};
+    rc = make_sensors(&o, scene, &g, &view);
+    il_illuminance *r = rc == IL_EXIT_OK ? calloc(g.count ? g.count : 1, sizeof *r) : NULL;
     if (rc == IL_EXIT_OK && !r) {
         cli_error("out of memory for %zu readings", g.count);
         rc = IL_EXIT_RUNTIME;
@@ -261,6 +316,7 @@ int cmd_illuminance(int argc, char **argv)
     if (rc != IL_EXIT_OK) {
         il_scene_release(scene);
         free(g.sensors);
+        free(view.pixel_of);
         return rc;
     }
 
@@ -269,6 +325,8 @@ int cmd_illuminance(int argc, char **argv)
     cli_interrupted = 0;
     cli_interrupt_catch(o.run_opts.quiet, &old_int);
     cli_solve_line_start(&line, o.run_opts.quiet, &cli_interrupted);
+    if (o.desc.samples == 0)
+        o.desc.samples = o.view ? 64u : 1024u;
     o.desc.seed = o.run.seed;
     o.desc.threads = o.run.threads;
     o.desc.progress = on_progress;
@@ -282,18 +340,23 @@ int cmd_illuminance(int argc, char **argv)
         cli_error("%s", err.message);
         rc = cli_exit_for(s);
     } else {
-        print_summary(&o, &g, r, &st);
+        if (o.view)
+            rc = cli_view_finish(&view, &g, r, o.scale_max, o.outputs, o.num_outputs, st.samples,
+                                 o.run_opts.quiet);
+        else
+            print_summary(&o, &g, r, &st);
         if (!o.run_opts.quiet)
             fprintf(stderr, "illuminance: %.2f s, %.3g M rays/s%s\n", st.seconds,
                     st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0,
                     st.nonfinite_samples ? " (some samples were NaN or infinite and were dropped)" : "");
-        if (o.output)
-            rc = write_csv(o.output, &g, r);
+        for (int k = 0; !o.view && rc == IL_EXIT_OK && k < o.num_outputs; k++)
+            rc = write_csv(o.outputs[k], &g, r);
         if (rc == IL_EXIT_OK && cli_interrupted)
             rc = IL_EXIT_INTERRUPTED;
     }
     free(r);
     free(g.sensors);
+    free(view.pixel_of);
     il_scene_release(scene);
     return rc;
 }

@@ -74,8 +74,40 @@ expect_interrupted 1 "interrupted" -- "$ILLUM" illuminance cornell --plane y=0.1
     -o stopped.csv
 expect_file stopped.csv "interrupted: the readings so far"
 
+# The view: a sensor on the surface each pixel sees.  Looking straight down
+# from 1.5 m, the centre pixel of a 33x33 view sees the floor below the
+# lamp: 1707.5 lx in the PFM.  The PNG is the view and the legend beside it
+# (62 pixels wide below 200 rows).
+view=(--view --camera-pos 0,1.5,0 --camera-target 0,0,0 --camera-up 0,0,-1 --fov 60)
+expect_exit 0 "view" -- "$ILLUM" illuminance lamp.json "${view[@]}" --width 33 --height 33 \
+    --samples 8 -o view.pfm -o view.png -o view.exr
+expect_stdout "view 33x33: 1089 pixels see a surface, 8 samples each" "view"
+expect_stdout "palette     0 .. 2000 lx" "view: the palette's round top"
+for f in view.pfm view.png view.exr; do expect_file "$f" "view"; done
+checks=$((checks + 1))
+centre=$(od -A n -t f4 -j $(( $(head -c 64 view.pfm | head -3 | wc -c) + (16 * 33 + 16) * 12 )) -N 4 view.pfm)
+awk -v v="$centre" 'BEGIN { d = v - 1707.5; exit !(d < 0.01 && d > -0.01) }' ||
+    fail "view.pfm: the centre pixel reads $centre lx, expected 1707.5"
+checks=$((checks + 1))
+[ "$(od -A n -t u1 -j 16 -N 8 view.png | tr -s ' ')" = " 0 0 0 95 0 0 0 33" ] ||
+    fail "view.png: not 95x33 (the view and its legend)"
+expect_exit 0 "view, --scale-max" -- "$ILLUM" illuminance lamp.json "${view[@]}" --width 16 --height 16 \
+    --samples 4 --scale-max 500 -q -o scaled.png
+expect_stdout "palette     0 .. 500 lx" "--scale-max"
+expect_exit 0 "view, default size" -- "$ILLUM" illuminance cornell --view --samples 1 -q -o big.png
+checks=$((checks + 1))
+[ "$(od -A n -t u1 -j 16 -N 8 big.png | tr -s ' ')" = " 0 0 2 124 0 0 2 0" ] ||
+    fail "big.png: not 636x512 (512 and a 124-pixel legend)"
+
 # Bad input: a clear message, the exit status, no output file.
-expect_exit 2 "neither --plane nor --points" -- "$ILLUM" illuminance lamp.json -o bad.csv
+expect_exit 1 "view to CSV" -- "$ILLUM" illuminance lamp.json --view -o bad.csv
+expect_exit 1 "plane to PNG" -- "$ILLUM" illuminance lamp.json --plane y=0 -o bad.png
+expect_exit 2 "view and plane" -- "$ILLUM" illuminance lamp.json --view --plane y=0 -o bad.png
+expect_exit 2 "width without view" -- "$ILLUM" illuminance lamp.json --plane y=0 --width 8 -o bad.csv
+expect_exit 2 "camera without view" -- "$ILLUM" illuminance lamp.json --plane y=0 --fov 30 -o bad.csv
+expect_exit 1 "view, width 0" -- "$ILLUM" illuminance lamp.json --view --width 0 -o bad.png
+expect_no_file bad.png "bad view input"
+expect_exit 2 "no --plane, --points or --view" -- "$ILLUM" illuminance lamp.json -o bad.csv
 expect_exit 2 "both --plane and --points" -- "$ILLUM" illuminance lamp.json --plane y=0 --points points.csv -o bad.csv
 expect_exit 2 "--spacing with --points" -- "$ILLUM" illuminance lamp.json --points points.csv --spacing 1 -o bad.csv
 expect_exit 2 "unknown option" -- "$ILLUM" illuminance lamp.json --plane y=0 --bogus -o bad.csv

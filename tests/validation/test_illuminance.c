@@ -242,8 +242,40 @@ static void test_stop_and_bad_input(void)
     il_scene_release(open);
 }
 
+/* il_camera_sensors: looking down at the floor, every pixel sees it, its
+ * sensors lie on it and face up; looking up, no pixel sees anything. */
+static void test_camera_sensors(void)
+{
+    il_scene *s = dark_floor_scene();
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 2, 0),
+                                                    .intensity = v3s(1.0f)}, &g_err), &g_err);
+    set_camera(s, v3(0, 0, 0), v3(0, -1, 0), v3(0, 0, -1), 40.0f);
+    commit(s);
+    enum { W = 9, H = 7 };
+    il_sensor sn[W * H];
+    bool seen[W * H];
+    CHECK_OK(il_camera_sensors(s, W, H, sn, seen, &g_err), &g_err);
+    int on_floor = 0;
+    for (int i = 0; i < W * H; i++)
+        on_floor += seen[i] && fabsf(sn[i].position.y + 10.0f) < 1e-3f && sn[i].normal.y > 0.999f;
+    CHECK(on_floor == W * H);
+    /* The centre pixel looks straight down. */
+    CHECK_NEAR(sn[(H / 2) * W + W / 2].position.x, 0.0, 1e-4);
+    CHECK_NEAR(sn[(H / 2) * W + W / 2].position.z, 0.0, 1e-4);
+    set_camera(s, v3(0, 0, 0), v3(0, 1, 0), v3(0, 0, -1), 40.0f);
+    CHECK_OK(il_camera_sensors(s, W, H, sn, seen, &g_err), &g_err);
+    int any = 0;
+    for (int i = 0; i < W * H; i++)
+        any += seen[i];
+    CHECK(any == 0);
+    il_error err = {0};
+    CHECK(il_camera_sensors(s, 0, H, sn, seen, &err) == IL_ERR_INVALID);
+    il_scene_release(s);
+}
+
 int main(void)
 {
+    test_camera_sensors();
     test_point_and_spot();
     test_directional();
     test_area_light();

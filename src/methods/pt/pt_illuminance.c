@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/sampler.h"
 #include "methods/pt/pt.h"
+#include "scene/camera.h"
 
 #define BLOCK_SAMPLES 64u           /* samples of one sensor in one work item */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
@@ -158,5 +159,38 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
         stats->seconds = omp_get_wtime() - t0;
     }
     free(normals), free(total), free(part);
+    return IL_OK;
+}
+
+il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t height,
+                            il_sensor *sensors, bool *seen, il_error *err)
+{
+    if (!scene || !sensors || !seen || width == 0 || height == 0)
+        return il_fail(err, IL_ERR_INVALID, "camera sensors: scene, a non-empty size and outputs are required");
+    if (!scene->committed)
+        return il_fail(err, IL_ERR_INVALID, "camera sensors: the scene is not committed (call il_scene_commit)");
+    il_camera_desc d;
+    if (!il_scene_get_camera(scene, &d))
+        return il_fail(err, IL_ERR_INVALID, "camera sensors: the scene has no camera");
+    il_camera cam;
+    il_camera_init(&cam, &d, width, height);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int64_t y = 0; y < (int64_t)height; y++) {
+        for (uint32_t x = 0; x < width; x++) {
+            size_t i = (size_t)y * width + x;
+            il_ray ray = {.org = cam.position, .tmin = 0.0f,
+                          .dir = il_camera_ray_dir(&cam, (float)x + 0.5f, (float)y + 0.5f),
+                          .tmax = INFINITY};
+            il_hit hit;
+            seen[i] = il_trace_closest(scene->tracer, &ray, &hit);
+            sensors[i] = (il_sensor){{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+            if (!seen[i])
+                continue;
+            il_surface surf;
+            il_scene_surface(scene, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
+            il_vec3 n = v3_dot(surf.ns, ray.dir) > 0.0f ? v3_neg(surf.ns) : surf.ns;
+            sensors[i] = (il_sensor){surf.p, n};
+        }
+    }
     return IL_OK;
 }
