@@ -3,7 +3,11 @@
  *
  * The samples of every sensor are taken in rounds of blocks; a block's sums
  * are kept apart and added to its sensor's totals in block order after the
- * round, so the readings do not depend on which thread took which block. */
+ * round, so the readings do not depend on which thread took which block.
+ * Blocks are smaller when there are many sensors (a view has one a pixel),
+ * so that every round, after which progress is reported and the work may
+ * stop, stays about ROUND_SAMPLES long and leaves every sensor with the
+ * same number of samples. */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -15,7 +19,7 @@
 #include "methods/pt/pt.h"
 #include "scene/camera.h"
 
-#define BLOCK_SAMPLES 64u           /* samples of one sensor in one work item */
+#define BLOCK_SAMPLES 64u           /* most samples of one sensor in one work item */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
 #define MAX_SAMPLES (1u << 30)      /* the Sobol sample index is 32 bits */
 #define LUMENS_PER_WATT 683.0       /* the luminous efficacy the loaders use too (docs/scene-format.md) */
@@ -109,9 +113,12 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
     uint32_t samples = desc->samples ? desc->samples : 1024u;
     uint32_t max_depth = desc->max_depth ? desc->max_depth : 8u;
     int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
-    uint32_t blocks = (samples + BLOCK_SAMPLES - 1) / BLOCK_SAMPLES;
-    /* Blocks per sensor in a round: enough work between progress calls. */
-    uint64_t per_round = ROUND_SAMPLES / BLOCK_SAMPLES / (count ? count : 1);
+    /* The block size and the blocks per sensor in a round depend on the
+     * sensor and sample counts only, never on the threads. */
+    uint64_t per_sensor = ROUND_SAMPLES / (count ? count : 1);
+    uint32_t block = per_sensor < 1 ? 1u : (per_sensor > BLOCK_SAMPLES ? BLOCK_SAMPLES : (uint32_t)per_sensor);
+    uint32_t blocks = (uint32_t)(((uint64_t)samples + block - 1) / block);
+    uint64_t per_round = per_sensor / block;
     uint32_t round_blocks = per_round < 1 ? 1u : (per_round > blocks ? blocks : (uint32_t)per_round);
 
     il_vec3 *normals = malloc((count ? count : 1) * sizeof *normals);
@@ -133,8 +140,8 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
         for (int64_t it = 0; it < items; it++) {
             size_t i = (size_t)(it / nb);
             uint32_t b = done + (uint32_t)(it % nb);
-            uint32_t first = b * BLOCK_SAMPLES;
-            uint32_t n = samples - first < BLOCK_SAMPLES ? samples - first : BLOCK_SAMPLES;
+            uint32_t first = b * block;
+            uint32_t n = samples - first < block ? samples - first : block;
             sample_block(scene, desc, max_depth, sensors[i].position, normals[i], i, first, n,
                          &part[it]);
         }
@@ -145,7 +152,7 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
             !desc->progress((double)done / blocks, omp_get_wtime() - t0, desc->progress_user))
             break;
     }
-    uint32_t taken = done >= blocks ? samples : done * BLOCK_SAMPLES;
+    uint32_t taken = done >= blocks ? samples : done * block;
     uint64_t rays = 0, bad = 0;
     for (size_t i = 0; i < count; i++) {
         out[i] = reading(&total[i]);
