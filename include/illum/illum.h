@@ -211,6 +211,10 @@ il_status il_scene_set_environment(il_scene *scene, const il_environment_desc *d
  * the ray-casting structure and the light tables.  Must be called before
  * rendering; the scene must not be changed afterwards. */
 il_status il_scene_commit(il_scene *scene, il_error *err);
+/* Before commit: removes the point, spot and directional lights and darkens
+ * every emitter (their surfaces stay, as dark lamps); the environment stays.
+ * For a scene lit by its sky alone (a daylight study). */
+il_status il_scene_remove_lights(il_scene *scene, il_error *err);
 
 /* Render settings a scene file asked for (the "render" block of a JSON scene,
  * docs/scene-format.md); a zero field or an empty method means "not set", so
@@ -292,6 +296,20 @@ typedef struct il_write_desc {
  * texel density as the input).  Rotation is not applied. */
 il_status il_envmap_convert(const il_image *src, il_env_mapping from, il_env_mapping to,
                             uint32_t width, il_image *dst, il_error *err);
+
+/* The CIE standard overcast sky (Moon & Spencer 1942; CIE S 011/E:2003,
+ * sky type 1) as a lat-long environment map of width x width/2 texels
+ * (docs/environment.md): L(a) = Lz (1 + 2 sin a) / 3 at altitude a, white,
+ * with Lz set so that an unobstructed horizontal surface receives
+ * horizontal_lux from the sky (E = 7 pi Lz / 9; 683 lm/W), and below the
+ * horizon a diffuse ground of that albedo lit by it (L = albedo E / pi).
+ * For daylight-factor studies (docs/illuminance.md). */
+typedef struct il_sky_desc {
+    double horizontal_lux;   /* 0 means 10,000 lx */
+    double ground_albedo;    /* 0 to 1; negative means none (black ground); 0 means 0.2 */
+    uint32_t width;          /* 0 means 1024 */
+} il_sky_desc;
+il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err);
 
 /* Reads PNG, JPEG (8-bit sRGB, decoded to linear), HDR (RGBE), EXR and PFM. */
 il_status il_image_read(const char *path, il_image *out, il_error *err);

@@ -259,8 +259,10 @@ int cli_tonemap_check(const char *command, const cli_tonemap_options *o);
  * tone-mapping option was given (the plain PNG transfer, as before). */
 const il_tonemap_desc *cli_tonemap_desc(cli_tonemap_options *o, float exposure);
 
-/* The environment-map options (cli_env.c), shared by render and bake:
- * --env FILE, --env-mapping M, --env-intensity K, --env-rotate DEGREES. */
+/* The environment-map options (cli_env.c), shared by render, bake, view
+ * and illuminance: --env FILE, --env-mapping M, --env-intensity K,
+ * --env-rotate DEGREES, or --sky overcast [--sky-lux E] [--ground-albedo R];
+ * --sky-only with either. */
 typedef struct cli_env_options {
     const char *file;                /* --env: NULL when not given */
     il_env_mapping mapping;
@@ -268,16 +270,21 @@ typedef struct cli_env_options {
     double intensity;                /* 0: 1 */
     double rotation;                 /* degrees */
     const char *first_setting;       /* the first --env-* option given, for messages */
+    bool sky;                        /* --sky overcast: the CIE overcast sky instead of a file */
+    bool sky_only;                   /* --sky-only: the scene's own lights switched off */
+    il_sky_desc sky_desc;            /* --sky-lux, --ground-albedo */
+    const char *first_sky_setting;   /* the first of those given, for messages */
 } cli_env_options;
 
 extern const char cli_env_help[];
-/* As cli_radiosity_option, for the four options above. */
+/* As cli_radiosity_option, for the options above. */
 bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc);
-/* After parsing: an --env-* setting without --env is a usage error. */
+/* After parsing: an --env-* setting without --env, a sky setting without
+ * --sky, --sky-only without either, or both --env and --sky is a usage error. */
 int cli_env_check(const char *command, const cli_env_options *o);
-/* Reads o->file and sets it as the scene's environment (before commit);
- * prints the error (a missing, corrupt or misshapen map) and returns its
- * exit status.  Does nothing when o is NULL or has no file. */
+/* Reads o->file (or makes the sky) and sets it as the scene's environment
+ * (before commit); prints the error (a missing, corrupt or misshapen map)
+ * and returns its exit status.  Does nothing when o is NULL or has neither. */
 int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
 /* cli_load_scene with the environment map of `env` (may be NULL) set
  * between loading and committing. */

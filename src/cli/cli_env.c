@@ -1,6 +1,8 @@
-/* The environment-map options shared by render and bake (docs/environment.md):
- * --env FILE, --env-mapping, --env-intensity, --env-rotate.  The map is set
- * on the scene after loading and before commit (cli_load_scene_env). */
+/* The environment-map options shared by render, bake, view and illuminance
+ * (docs/environment.md): --env FILE, --env-mapping, --env-intensity,
+ * --env-rotate, or --sky overcast with --sky-lux and --ground-albedo.  The
+ * map is set on the scene after loading and before commit
+ * (cli_load_scene_env). */
 #include <stdio.h>
 #include <string.h>
 
@@ -17,13 +19,25 @@ const char cli_env_help[] =
     "                         1:1 angular, 3:4 cross, else latlong)\n"
     "  --env-intensity K      multiply the map's radiance by K (default 1)\n"
     "  --env-rotate DEGREES   turn the map about +y, counter-clockwise seen from\n"
-    "                         above (default 0)\n";
+    "                         above (default 0)\n"
+    "  --sky overcast         the CIE standard overcast sky instead of a map: an\n"
+    "                         unobstructed horizontal surface gets --sky-lux E from\n"
+    "                         it (default 10000 lx); below the horizon a ground of\n"
+    "                         --ground-albedo R (default 0.2) lit by it\n"
+    "  --sky-only             light the scene by the sky (--env or --sky) alone: its\n"
+    "                         own lights and emitters are switched off\n";
 
 bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
 {
     const char *a = argv[*i];
+    if (!strcmp(a, "--sky-only")) {
+        o->sky_only = true;
+        *rc = IL_EXIT_OK;
+        return true;
+    }
     if (strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
-        strcmp(a, "--env-rotate"))
+        strcmp(a, "--env-rotate") && strcmp(a, "--sky") && strcmp(a, "--sky-lux") &&
+        strcmp(a, "--ground-albedo"))
         return false;
     *rc = IL_EXIT_OK;
     const char *v = cli_value(argc, argv, i);
@@ -33,6 +47,27 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
     }
     if (!strcmp(a, "--env")) {
         o->file = v;
+        return true;
+    }
+    if (!strcmp(a, "--sky")) {
+        if (strcmp(v, "overcast")) {
+            cli_error("--sky: expected overcast, got '%s'", v);
+            *rc = IL_EXIT_BAD_INPUT;
+        }
+        o->sky = true;
+        return true;
+    }
+    if (!strcmp(a, "--sky-lux") || !strcmp(a, "--ground-albedo")) {
+        if (!o->first_sky_setting)
+            o->first_sky_setting = a;
+        bool lux = !strcmp(a, "--sky-lux");
+        double x = 0.0;
+        if (!cli_parse_double(a, v, lux ? 1e-3 : 0.0, lux ? 1e7 : 1.0, &x))
+            *rc = IL_EXIT_BAD_INPUT;
+        else if (lux)
+            o->sky_desc.horizontal_lux = x;
+        else
+            o->sky_desc.ground_albedo = x > 0.0 ? x : -1.0; /* 0 in the desc means 0.2 */
         return true;
     }
     if (!o->first_setting)
@@ -65,15 +100,44 @@ int cli_env_check(const char *command, const cli_env_options *o)
         cli_error("%s: %s needs --env FILE (see 'illum %s --help')", command, o->first_setting, command);
         return IL_EXIT_USAGE;
     }
+    if (o->first_sky_setting && !o->sky) {
+        cli_error("%s: %s needs --sky overcast (see 'illum %s --help')", command,
+                  o->first_sky_setting, command);
+        return IL_EXIT_USAGE;
+    }
+    if (o->sky_only && !o->sky && !o->file) {
+        cli_error("%s: --sky-only needs --sky overcast or --env FILE", command);
+        return IL_EXIT_USAGE;
+    }
+    if (o->sky && o->file) {
+        cli_error("%s: --env and --sky both set the sky; give one", command);
+        return IL_EXIT_USAGE;
+    }
     return IL_EXIT_OK;
 }
 
 int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
 {
-    if (!o || !o->file)
+    if (!o || (!o->file && !o->sky))
         return IL_EXIT_OK;
     il_error err = {0};
     il_image img = {0};
+    if (o->sky_only && il_scene_remove_lights(scene, &err) != IL_OK) {
+        cli_error("--sky-only: %s", err.message);
+        return cli_exit_for(err.status);
+    }
+    if (o->sky) {
+        il_status st = il_sky_overcast(&o->sky_desc, &img, &err);
+        il_environment_desc d = {.map = &img, .mapping = IL_ENV_LATLONG};
+        if (st == IL_OK)
+            st = il_scene_set_environment(scene, &d, &err);
+        il_image_free(&img);
+        if (st != IL_OK) {
+            cli_error("--sky: %s", err.message);
+            return cli_exit_for(st);
+        }
+        return IL_EXIT_OK;
+    }
     il_status st = il_image_read(o->file, &img, &err);
     if (st != IL_OK) {
         cli_error("--env: %s", err.message);

@@ -214,6 +214,13 @@ static int write_csv(const char *path, const cli_sensor_grid *g, const il_illumi
     return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
 }
 
+/* Lux as people write them: whole numbers from 1000 on, else 4 digits. */
+static const char *lux_text(double v, char buf[32])
+{
+    snprintf(buf, 32, v >= 1000.0 ? "%.0f" : "%.4g", v);
+    return buf;
+}
+
 static float axis_coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
 
 static void print_summary(const options *o, const cli_sensor_grid *g, const il_illuminance *r,
@@ -238,14 +245,24 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
     else
         printf("%zu sensors from %s\n", g->count, o->points);
     il_vec3 pl = g->sensors[lo].position, ph = g->sensors[hi].position;
-    printf("average     %.4g lx\n", avg);
-    printf("minimum     %.4g lx at (%g, %g, %g)\n", (double)r[lo].lux, (double)pl.x, (double)pl.y,
-           (double)pl.z);
-    printf("maximum     %.4g lx at (%g, %g, %g)\n", (double)r[hi].lux, (double)ph.x, (double)ph.y,
-           (double)ph.z);
+    char b[32];
+    printf("average     %s lx\n", lux_text(avg, b));
+    printf("minimum     %s lx at (%g, %g, %g)\n", lux_text(r[lo].lux, b), (double)pl.x,
+           (double)pl.y, (double)pl.z);
+    printf("maximum     %s lx at (%g, %g, %g)\n", lux_text(r[hi].lux, b), (double)ph.x,
+           (double)ph.y, (double)ph.z);
     if (avg > 0.0)
         printf("uniformity  %.3f (minimum / average), %.3f (minimum / maximum)\n",
                (double)r[lo].lux / avg, r[hi].lux > 0.0f ? (double)r[lo].lux / r[hi].lux : 0.0);
+    if (o->env.sky && !o->env.sky_only)
+        printf("daylight    the scene's own lights count too: --sky-only gives the daylight factor\n");
+    if (o->env.sky && o->env.sky_only) {
+        /* The daylight factor: indoor over unobstructed outdoor horizontal
+         * illuminance under the overcast sky (CIE), in per cent. */
+        double out = o->env.sky_desc.horizontal_lux > 0.0 ? o->env.sky_desc.horizontal_lux : 10000.0;
+        printf("daylight    factor %.3g%% average, %.3g%% minimum, %.3g%% maximum (%g lx outdoors)\n",
+               100.0 * avg / out, 100.0 * r[lo].lux / out, 100.0 * r[hi].lux / out, out);
+    }
     printf("noise       %u samples a sensor; standard error at most %.2g%% of a reading\n",
            st->samples, 100.0 * worst_rel);
     /* The readings as a plan when the grid fits 80 columns: rows from the
@@ -258,7 +275,7 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
                (double)axis_coord(g->sensors[0].position, g->axes[1]));
         for (uint32_t row = g->rows; row-- > 0;) {
             for (uint32_t c = 0; c < g->cols; c++)
-                printf("%8.4g", (double)r[(size_t)row * g->cols + c].lux);
+                printf("%8s", lux_text(r[(size_t)row * g->cols + c].lux, b));
             putchar('\n');
         }
     }

@@ -292,6 +292,18 @@ il_status il_scene_add_light(il_scene *s, const il_light_desc *d, il_error *err)
     return IL_OK;
 }
 
+il_status il_scene_remove_lights(il_scene *s, il_error *err)
+{
+    if (!s)
+        return il_fail(err, IL_ERR_INVALID, "remove lights: no scene");
+    if (s->committed)
+        return il_fail(err, IL_ERR_INVALID, "the scene is committed and can no longer change");
+    s->num_user_lights = 0;
+    for (uint32_t i = 0; i < s->num_materials; i++)
+        s->materials[i].emission = v3s(0.0f);
+    return IL_OK;
+}
+
 il_status il_scene_set_camera(il_scene *s, const il_camera_desc *d, il_error *err)
 {
     if (!v3_is_finite(d->position) || !v3_is_finite(d->target) || !v3_is_finite(d->up))

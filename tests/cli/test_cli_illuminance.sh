@@ -99,6 +99,24 @@ checks=$((checks + 1))
 [ "$(od -A n -t u1 -j 16 -N 8 big.png | tr -s ' ')" = " 0 0 2 124 0 0 2 0" ] ||
     fail "big.png: not 636x512 (512 and a 124-pixel legend)"
 
+# Daylight: the overcast sky alone (the lamp switched off) gives the open
+# floor its 10,000 lx, a daylight factor of 100%; with the lamp on, the
+# summary says the factor needs --sky-only.
+expect_exit 0 "overcast, sky only" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-only \
+    --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 1024
+expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% average" "sky only: DF 100%"
+expect_exit 0 "overcast, lamp on" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-lux 20000 \
+    --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 64
+expect_stdout "--sky-only gives the daylight factor" "sky and lamp"
+expect_exit 0 "render under the sky" -- "$ILLUM" render lamp.json --sky overcast --sky-only --width 8 \
+    --height 8 --spp 2 -q -o sky.pfm
+expect_file sky.pfm "render under the sky"
+expect_exit 1 "unknown sky" -- "$ILLUM" illuminance lamp.json --sky cloudy --plane y=0 -o bad.csv
+expect_exit 1 "ground albedo 2" -- "$ILLUM" illuminance lamp.json --sky overcast --ground-albedo 2 --plane y=0 -o bad.csv
+expect_exit 2 "sky lux without the sky" -- "$ILLUM" illuminance lamp.json --sky-lux 5000 --plane y=0 -o bad.csv
+expect_exit 2 "sky and env" -- "$ILLUM" illuminance lamp.json --sky overcast --env x.hdr --plane y=0 -o bad.csv
+expect_exit 2 "sky only without a sky" -- "$ILLUM" render lamp.json --sky-only -o bad.png
+
 # Bad input: a clear message, the exit status, no output file.
 expect_exit 1 "view to CSV" -- "$ILLUM" illuminance lamp.json --view -o bad.csv
 expect_exit 1 "plane to PNG" -- "$ILLUM" illuminance lamp.json --plane y=0 -o bad.png

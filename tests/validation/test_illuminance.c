@@ -8,6 +8,10 @@
  *   atan(X/sqrt(1+Y^2))] below a corner, X = a/h, Y = b/h);
  * - the furnace: inside a closed box whose walls emit Le and reflect rho,
  *   the radiance is Le/(1-rho) everywhere, so E = pi Le/(1-rho);
+ * - the CIE overcast sky (il_sky_overcast) with its ground: E = the sky's
+ *   horizontal illuminance facing up; facing sideways E_v / E_h =
+ *   (pi/6 + 4/9) / (7 pi/9) + albedo / 2 (the sky's half of a vertical
+ *   hemisphere, L = Lz (1 + 2 sin a)/3, integrates to Lz (pi/6 + 4/9));
  * and against the path tracer: on the Cornell box's floor, the floor's
  * radiance rho E / pi (Lambert).  Lux are 683 lm/W times the Rec.709
  * luminance.  Readings do not depend on the thread count; a stopped
@@ -273,8 +277,48 @@ static void test_camera_sensors(void)
     il_scene_release(s);
 }
 
+/* A sensor under the open overcast sky, the scene's own lights removed
+ * (il_scene_remove_lights) and nothing else in view but a speck. */
+static void test_overcast_sky(void)
+{
+    il_scene *s = new_scene();
+    uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0.0f)});
+    uint32_t lamp = add_material(s, (il_material_desc){.emission = v3s(100.0f)});
+    add_quad(s, v3(500, 500, 500), v3(0.01f, 0, 0), v3(0, 0.01f, 0), black);
+    add_quad(s, v3(0, 1, 0), v3(0.5f, 0, 0), v3(0, 0, 0.5f), lamp);
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 2, 0),
+                                                    .intensity = v3s(50.0f)}, &g_err), &g_err);
+    CHECK_OK(il_scene_remove_lights(s, &g_err), &g_err);
+    il_image sky = {0};
+    CHECK_OK(il_sky_overcast(&(il_sky_desc){.horizontal_lux = 10000.0}, &sky, &g_err), &g_err);
+    CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.map = &sky}, &g_err), &g_err);
+    il_image_free(&sky);
+    commit(s);
+    const il_sensor sn[2] = {{v3(3, 0, 0), v3(0, 1, 0)}, {v3(3, 0, 0), v3(1, 0, 0)}};
+    il_illuminance r[2];
+    measure(s, sn, 2, (il_illuminance_desc){.samples = 4096, .seed = 3}, r, NULL);
+    double vertical = (PI_D / 6.0 + 4.0 / 9.0) / (7.0 * PI_D / 9.0) + 0.2 / 2.0;
+    printf("overcast: horizontal %.1f lx (expected 10000), vertical %.1f lx (expected %.1f)\n",
+           (double)r[0].lux, (double)r[1].lux, 10000.0 * vertical);
+    CHECK_REL(r[0].lux, 10000.0, 0.01);
+    CHECK_REL(r[1].lux, 10000.0 * vertical, 0.01);
+    il_error err = {0};
+    CHECK(il_scene_remove_lights(s, &err) == IL_ERR_INVALID); /* committed */
+    il_scene_release(s);
+
+    /* Without the sky nothing is left to light it. */
+    s = new_scene();
+    lamp = add_material(s, (il_material_desc){.emission = v3s(1.0f)});
+    add_floor(s, 0.0f, 1.0f, lamp);
+    CHECK_OK(il_scene_remove_lights(s, &g_err), &g_err);
+    CHECK(il_scene_commit(s, &err) == IL_ERR_INVALID);
+    printf("no light left: %s\n", err.message);
+    il_scene_release(s);
+}
+
 int main(void)
 {
+    test_overcast_sky();
     test_camera_sensors();
     test_point_and_spot();
     test_directional();
