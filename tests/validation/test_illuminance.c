@@ -15,7 +15,9 @@
  * and against the path tracer: on the Cornell box's floor, the floor's
  * radiance rho E / pi (Lambert).  Lux are 683 lm/W times the Rec.709
  * luminance.  Readings do not depend on the thread count; a stopped
- * measurement keeps the samples taken. */
+ * measurement keeps the samples taken; the paths traced together as a wave
+ * (il_pt_sensor_wave, what il_measure_illuminance runs) give the scalar
+ * estimator's values bit for bit. */
 #include "pt_scenes.h"
 #include "scene/scene.h"
 
@@ -203,6 +205,44 @@ static void test_against_path_tracer(void)
     il_scene_release(s);
 }
 
+/* Sensor paths of the Cornell box traced as one wave against the same
+ * paths one at a time, with both samplers. */
+static void test_wave_matches_scalar(void)
+{
+    il_scene *s = load_committed("cornell");
+    if (!s)
+        return;
+    enum { N = 256 };
+    static il_vec3 p[N], n[N], wave[N];
+    static il_sampler smp[N];
+    void *scratch = aligned_alloc(64, (il_pt_wavefront_scratch_bytes() + 63) / 64 * 64);
+    CHECK(il_pt_sensor_wave_max() >= N);
+    for (int type = 0; type < 2; type++) {
+        for (uint32_t k = 0; k < N; k++) {
+            /* 16 sensors in the box, some on the floor, facing all ways. */
+            uint32_t i = k / 16;
+            p[k] = v3(0.05f + 0.03f * i, i % 3 == 0 ? 0.0f : 0.1f + 0.02f * i, 0.5f - 0.025f * i);
+            n[k] = v3_normalize(i % 3 == 0 ? v3(0, 1, 0) : v3(0.3f * (float)(i % 4) - 0.4f, 0.5f, -0.2f));
+            il_sampler_start(&smp[k], type ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL, 9, i, k % 16);
+        }
+        uint64_t rays_wave = 0, rays_scalar = 0;
+        il_pt_sensor_wave(s, 8, scratch, p, n, smp, N, wave, &rays_wave);
+        int same = 0;
+        for (uint32_t k = 0; k < N; k++) {
+            il_sampler one;
+            il_sampler_start(&one, type ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL, 9, k / 16, k % 16);
+            il_vec3 e = il_pt_sensor_irradiance(s, p[k], n[k], &one, 8, &rays_scalar);
+            same += memcmp(&e, &wave[k], sizeof e) == 0;
+        }
+        printf("wave against scalar (%s): %d of %d paths identical, %llu and %llu rays\n",
+               type ? "pcg" : "sobol", same, N, (unsigned long long)rays_wave,
+               (unsigned long long)rays_scalar);
+        CHECK(same == N && rays_wave == rays_scalar);
+    }
+    free(scratch);
+    il_scene_release(s);
+}
+
 static bool stop_at_once(double fraction, double seconds, void *user)
 {
     (void)fraction, (void)seconds;
@@ -325,6 +365,7 @@ int main(void)
     test_area_light();
     test_furnace_and_threads();
     test_against_path_tracer();
+    test_wave_matches_scalar();
     test_stop_and_bad_input();
     return check_report();
 }

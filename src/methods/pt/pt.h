@@ -35,12 +35,6 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
 il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampler *sampler,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays);
 
-/* Irradiance (W/m^2) at p on a surface facing the unit normal n, from one
- * sampled path (pt_path.c: the radiance of a white Lambertian surface there,
- * times pi).  Counts rays cast in *rays. */
-il_vec3 il_pt_sensor_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_sampler *sampler,
-                                uint32_t max_depth, uint64_t *rays);
-
 /* The camera pass of il_pt_render (pt_wavefront.c): what il_camera_pass
  * does with il_pt_radiance, bit for bit, with the paths of a tile traced
  * together through the stream calls.  Fails only when out of memory. */
@@ -104,5 +98,22 @@ static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
         st->L = v3_add(st->L, st->shadow_L);
     st->shadow = false;
 }
+
+/* Irradiance (W/m^2) at p on a surface facing the unit normal n, from one
+ * sampled path (pt_path.c: the radiance of a white Lambertian surface there,
+ * times pi).  Counts rays cast in *rays. */
+il_vec3 il_pt_sensor_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_sampler *sampler,
+                                uint32_t max_depth, uint64_t *rays);
+/* The path's start: the state, the sensor's surface and the hit standing
+ * for it, which il_pt_step_at takes as the first vertex. */
+void il_pt_sensor_begin(il_pt_state *st, il_vec3 p, il_vec3 n, il_surface *surf, il_hit *hit);
+/* il_pt_sensor_irradiance for paths k < count (at most il_pt_sensor_wave_max),
+ * traced together through the stream calls (pt_wavefront.c): out[k], bit for
+ * bit the scalar value, from sensor (p[k], n[k]) with sampler smp[k];
+ * scratch holds il_pt_wavefront_scratch_bytes() (64-byte aligned). */
+uint32_t il_pt_sensor_wave_max(void);
+void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, void *scratch, const il_vec3 *p,
+                       const il_vec3 *n, const il_sampler *smp, uint32_t count, il_vec3 *out,
+                       uint64_t *rays);
 
 #endif

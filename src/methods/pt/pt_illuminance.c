@@ -20,6 +20,7 @@
 #include "scene/camera.h"
 
 #define BLOCK_SAMPLES 64u           /* most samples of one sensor in one work item */
+#define WAVE_PATHS 256u             /* most paths traced together (il_pt_sensor_wave_max) */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
 #define MAX_SAMPLES (1u << 30)      /* the Sobol sample index is 32 bits */
 #define LUMENS_PER_WATT 683.0       /* the luminous efficacy the loaders use too (docs/scene-format.md) */
@@ -52,27 +53,61 @@ static il_status check(const il_scene *scene, const il_sensor *sensors, size_t c
     return IL_OK;
 }
 
-static void sample_block(const il_scene *scene, const il_illuminance_desc *desc, uint32_t max_depth,
-                         il_vec3 p, il_vec3 n, uint64_t sensor, uint32_t first, uint32_t count,
-                         block_sum *out)
+/* Adds one sample to a block's sums. */
+static void add_sample(block_sum *b, il_vec3 e)
 {
-    memset(out, 0, sizeof *out);
-    for (uint32_t k = first; k < first + count; k++) {
-        il_sampler smp;
-        il_sampler_start(&smp, desc->sampler, desc->seed, sensor, k);
-        il_vec3 e = il_pt_sensor_irradiance(scene, p, n, &smp, max_depth, &out->rays);
-        if (!v3_is_finite(e)) {
-            out->bad++;
-            continue;
-        }
-        double y = il_luminance(e);
-        out->rgb[0] += e.x;
-        out->rgb[1] += e.y;
-        out->rgb[2] += e.z;
-        out->y += y;
-        out->yy += y * y;
-        out->n++;
+    if (!v3_is_finite(e)) {
+        b->bad++;
+        return;
     }
+    double y = il_luminance(e);
+    b->rgb[0] += e.x;
+    b->rgb[1] += e.y;
+    b->rgb[2] += e.z;
+    b->y += y;
+    b->yy += y * y;
+    b->n++;
+}
+
+/* The work items [first, last) of a round, item it being block done +
+ * it % nb of sensor it / nb: their paths traced as one wave (at most
+ * il_pt_sensor_wave_max paths), each item's sums formed in sample order. */
+typedef struct round_ctx {
+    const il_scene *scene;
+    const il_illuminance_desc *desc;
+    const il_sensor *sensors;
+    const il_vec3 *normals;
+    uint32_t max_depth, samples, block, done, nb;
+} round_ctx;
+
+static void sample_items(const round_ctx *c, int64_t first, int64_t last, void *scratch,
+                         block_sum *part)
+{
+    il_vec3 p[WAVE_PATHS] = {{0}}, n[WAVE_PATHS] = {{0}}, e[WAVE_PATHS];
+    il_sampler smp[WAVE_PATHS] = {{0}};
+    uint32_t count = 0;
+    for (int64_t it = first; it < last; it++) {
+        size_t i = (size_t)(it / c->nb);
+        uint32_t from = (c->done + (uint32_t)(it % c->nb)) * c->block;
+        uint32_t to = c->samples - from < c->block ? c->samples : from + c->block;
+        for (uint32_t k = from; k < to; k++, count++) {
+            p[count] = c->sensors[i].position;
+            n[count] = c->normals[i];
+            il_sampler_start(&smp[count], c->desc->sampler, c->desc->seed, i, k);
+        }
+    }
+    uint64_t rays = 0;
+    il_pt_sensor_wave(c->scene, c->max_depth, scratch, p, n, smp, count, e, &rays);
+    count = 0;
+    for (int64_t it = first; it < last; it++) {
+        block_sum *b = &part[it];
+        memset(b, 0, sizeof *b);
+        uint32_t from = (c->done + (uint32_t)(it % c->nb)) * c->block;
+        uint32_t to = c->samples - from < c->block ? c->samples : from + c->block;
+        for (uint32_t k = from; k < to; k++)
+            add_sample(b, e[count++]);
+    }
+    part[first].rays = rays; /* the wave's rays, counted once */
 }
 
 static void add_sum(block_sum *to, const block_sum *b)
@@ -124,8 +159,10 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
     il_vec3 *normals = malloc((count ? count : 1) * sizeof *normals);
     block_sum *total = calloc(count ? count : 1, sizeof *total);
     block_sum *part = malloc((count ? count : 1) * round_blocks * sizeof *part);
-    if (!normals || !total || !part) {
-        free(normals), free(total), free(part);
+    size_t stride = (il_pt_wavefront_scratch_bytes() + 63) / 64 * 64;
+    unsigned char *scratch = aligned_alloc(64, (size_t)threads * stride);
+    if (!normals || !total || !part || !scratch) {
+        free(normals), free(total), free(part), free(scratch);
         return il_fail(err, IL_ERR_MEMORY, "illuminance: out of memory for %zu sensors", count);
     }
     for (size_t i = 0; i < count; i++)
@@ -136,14 +173,16 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
     while (done < blocks && count > 0) {
         uint32_t nb = blocks - done < round_blocks ? blocks - done : round_blocks;
         int64_t items = (int64_t)count * nb;
+        /* Items in waves of as many whole blocks as a wave holds. */
+        uint32_t wave = il_pt_sensor_wave_max() < WAVE_PATHS ? il_pt_sensor_wave_max() : WAVE_PATHS;
+        int64_t per_wave = wave / block;
+        int64_t waves = (items + per_wave - 1) / per_wave;
+        round_ctx c = {scene, desc, sensors, normals, max_depth, samples, block, done, nb};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-        for (int64_t it = 0; it < items; it++) {
-            size_t i = (size_t)(it / nb);
-            uint32_t b = done + (uint32_t)(it % nb);
-            uint32_t first = b * block;
-            uint32_t n = samples - first < block ? samples - first : block;
-            sample_block(scene, desc, max_depth, sensors[i].position, normals[i], i, first, n,
-                         &part[it]);
+        for (int64_t wv = 0; wv < waves; wv++) {
+            int64_t last = (wv + 1) * per_wave < items ? (wv + 1) * per_wave : items;
+            sample_items(&c, wv * per_wave, last, scratch + (size_t)omp_get_thread_num() * stride,
+                         part);
         }
         for (int64_t it = 0; it < items; it++)
             add_sum(&total[it / nb], &part[it]);
@@ -165,7 +204,7 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
         stats->nonfinite_samples = bad;
         stats->seconds = omp_get_wtime() - t0;
     }
-    free(normals), free(total), free(part);
+    free(normals), free(total), free(part), free(scratch);
     return IL_OK;
 }
 

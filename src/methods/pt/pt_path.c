@@ -223,16 +223,24 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
  * hemisphere, f = 1/pi), so the path tracer's estimate of the radiance of
  * such a surface at p, times pi, estimates the irradiance there.  The
  * surface is not in the scene: nothing hits it, it blocks nothing. */
+void il_pt_sensor_begin(il_pt_state *st, il_vec3 p, il_vec3 n, il_surface *surf, il_hit *hit)
+{
+    static const il_material white = {.type = IL_MATERIAL_DIFFUSE, .diffuse = {1.0f, 1.0f, 1.0f}};
+    /* mesh 0, not IL_HIT_NONE: a hit to the wavefront; the step reads the
+     * mesh only at an emitter, which this is not. */
+    *surf = (il_surface){.p = p, .ng = n, .ns = n, .material = &white};
+    *hit = (il_hit){.ng = n};
+    il_pt_begin(st, v3_add(p, n), v3_neg(n)); /* seen along its normal */
+    st->rays = 0;                              /* no ray reached the sensor */
+}
+
 il_vec3 il_pt_sensor_irradiance(const il_scene *s, il_vec3 p, il_vec3 n, il_sampler *smp,
                                 uint32_t max_depth, uint64_t *rays)
 {
-    static const il_material white = {.type = IL_MATERIAL_DIFFUSE, .diffuse = {1.0f, 1.0f, 1.0f}};
-    const il_surface surf = {.p = p, .ng = n, .ns = n, .mesh = IL_HIT_NONE, .prim = IL_HIT_NONE,
-                             .material = &white};
-    const il_hit sensor = {.mesh = IL_HIT_NONE, .prim = IL_HIT_NONE, .ng = n};
     il_pt_state st;
-    il_pt_begin(&st, v3_add(p, n), v3_neg(n)); /* seen along its normal */
-    st.rays = 0;                                /* no ray reached the sensor */
+    il_surface surf;
+    il_hit sensor;
+    il_pt_sensor_begin(&st, p, n, &surf, &sensor);
     bool more = il_pt_step_at(s, &st, &sensor, &surf, NULL, smp, max_depth, IL_PT_MIS);
     if (st.shadow)
         il_pt_shadow_result(&st, il_trace_occluded(s->tracer, &st.shadow_ray));

@@ -106,21 +106,28 @@ static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
             w->diffuse_out[k]->nee_done = w->diffuse_out[k]->next_done = false;
 }
 
-/* Runs paths 0..n-1 of the wave to their ends. */
-static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n)
+/* Runs paths 0..n-1 of the wave to their ends.  With `first`, path j
+ * starts at the vertex first[j] (a sensor: il_pt_sensor_begin), whose hit
+ * w->hits[j] holds, instead of tracing its ray. */
+static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n, const il_surface *first)
 {
     const il_tracer *tr = pm->scene->tracer;
     uint32_t num_active = n;
     for (uint32_t j = 0; j < n; j++)
         w->active[j] = j;
     for (bool camera = true; num_active > 0; camera = false) {
-        for (uint32_t a = 0; a < num_active; a++)
-            w->rays[a] = w->st[w->active[a]].ray;
-        if (camera) /* a tile's camera rays: neighbours, alike */
-            il_trace_closest_n_coherent(tr, w->rays, w->hits, num_active);
-        else
-            il_trace_closest_n(tr, w->rays, w->hits, num_active);
-        il_wave_surfaces(pm->scene, w->hits, num_active, pm->prefetch, w->surf);
+        if (camera && first) {
+            for (uint32_t j = 0; j < n; j++)
+                w->surf[j] = first[j];
+        } else {
+            for (uint32_t a = 0; a < num_active; a++)
+                w->rays[a] = w->st[w->active[a]].ray;
+            if (camera) /* a tile's camera rays: neighbours, alike */
+                il_trace_closest_n_coherent(tr, w->rays, w->hits, num_active);
+            else
+                il_trace_closest_n(tr, w->rays, w->hits, num_active);
+            il_wave_surfaces(pm->scene, w->hits, num_active, pm->prefetch, w->surf);
+        }
         wave_samples(pm, w, num_active);
 
         uint32_t num_shadow = 0, still = 0;
@@ -163,7 +170,7 @@ static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_ca
             break;
         for (uint32_t j = 0; j < n; j++)
             il_pt_begin(&w->st[j], ctx->cam.position, w->cos_dir[j]);
-        run_wave(pm, w, n);
+        run_wave(pm, w, n, NULL);
         for (uint32_t j = 0; j < n; j++) {
             tile->rays += w->st[j].rays;
             il_camera_tile_add(ctx, tile, w->px[j], w->py[j], w->st[j].L);
@@ -190,4 +197,25 @@ void il_pt_wavefront_tile(const il_scene *scene, uint32_t max_depth, il_pt_strat
     pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = strategy,
                     .prefetch = il_wave_wants_prefetch(scene)};
     render_tile(&pm, ctx, tile);
+}
+
+uint32_t il_pt_sensor_wave_max(void) { return PT_WAVE; }
+
+void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, void *scratch, const il_vec3 *p,
+                       const il_vec3 *n, const il_sampler *smp, uint32_t count, il_vec3 *out,
+                       uint64_t *rays)
+{
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = IL_PT_MIS,
+                    .prefetch = il_wave_wants_prefetch(scene)};
+    pt_wave *w = scratch;
+    il_surface first[PT_WAVE];
+    for (uint32_t j = 0; j < count; j++) {
+        il_pt_sensor_begin(&w->st[j], p[j], n[j], &first[j], &w->hits[j]);
+        w->smp[j] = smp[j];
+    }
+    run_wave(&pm, w, count, first);
+    for (uint32_t j = 0; j < count; j++) {
+        *rays += w->st[j].rays;
+        out[j] = v3_scale(w->st[j].L, IL_PI);
+    }
 }
