@@ -21,6 +21,12 @@
 #include <stddef.h>
 #include "illum/illum.h"
 
+/* Photometric to radiometric: 683 lm/W, the luminous efficacy of 555 nm light
+ * that defines the candela (SI brochure, 9th ed., 2.3.1); the constant
+ * Blender's glTF importer uses (PBR_WATTS_TO_LUMENS).  The loaders divide
+ * candela and lux by it; illuminance readings multiply by it. */
+#define IL_LUMENS_PER_WATT 683.0f
+
 /* Range and step of the embedded tables (nm). */
 #define IL_CIE_LAMBDA_MIN 360.0
 #define IL_CIE_LAMBDA_MAX 830.0

@@ -9,10 +9,9 @@
  * Radiance's gensky with its ground glow. */
 #include <math.h>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "core/vec.h"
-
-#define LUMENS_PER_WATT 683.0  /* as the loaders' photometric units (docs/scene-format.md) */
 
 il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err)
 {
@@ -33,7 +32,7 @@ il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err)
     il_status st = il_image_alloc(out, width, height, err);
     if (st != IL_OK)
         return st;
-    double e = lux / LUMENS_PER_WATT;              /* W/m^2 of white light */
+    double e = lux / IL_LUMENS_PER_WATT;              /* W/m^2 of white light */
     double zenith = 9.0 * e / (7.0 * IL_PI);
     float ground = (float)(albedo * e / IL_PI);
     for (uint32_t j = 0; j < height; j++) {

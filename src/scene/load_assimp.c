@@ -12,17 +12,13 @@
 #include <string.h>
 #include <strings.h>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "image/srgb.h"
 #include "scene/loader.h"
 #include "scene/scene.h"
 #include "scene/xform.h"
-
-/* Photometric to radiometric: 683 lm/W, the luminous efficacy of 555 nm light
- * that defines the candela (SI brochure, 9th ed., 2.3.1); the constant
- * Blender's glTF importer uses (PBR_WATTS_TO_LUMENS). */
-#define IL_LUMENS_PER_WATT 683.0f
 
 /* An exponent at or above this is a perfect mirror (MTL Ns, glTF roughness). */
 #define IL_MIRROR_EXPONENT 1000.0f

@@ -23,7 +23,6 @@
 #define WAVE_PATHS 256u             /* most paths traced together (il_pt_sensor_wave_max) */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
 #define MAX_SAMPLES (1u << 30)      /* the Sobol sample index is 32 bits */
-#define LUMENS_PER_WATT 683.0       /* the luminous efficacy the loaders use too (docs/scene-format.md) */
 
 typedef struct block_sum {
     double rgb[3];
@@ -128,10 +127,10 @@ static il_illuminance reading(const block_sum *t)
         return r;
     double n = (double)t->n, mean = t->y / n;
     r.irradiance = (il_vec3){(float)(t->rgb[0] / n), (float)(t->rgb[1] / n), (float)(t->rgb[2] / n)};
-    r.lux = (float)(LUMENS_PER_WATT * mean);
+    r.lux = (float)(IL_LUMENS_PER_WATT * mean);
     if (t->n > 1) {
         double var = (t->yy - n * mean * mean) / (n - 1.0); /* unbiased sample variance */
-        r.lux_error = (float)(LUMENS_PER_WATT * sqrt(fmax(var, 0.0) / n));
+        r.lux_error = (float)(IL_LUMENS_PER_WATT * sqrt(fmax(var, 0.0) / n));
     }
     return r;
 }
