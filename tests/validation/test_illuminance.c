@@ -137,12 +137,7 @@ static il_scene *furnace_box(il_vec3 e, float rho)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho), .emission = e});
-    add_quad(s, v3(0, -1, 0), v3(0, 0, 1), v3(1, 0, 0), m);
-    add_quad(s, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(-1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, -1), v3(1, 0, 0), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, 1), v3(0, 1, 0), v3(1, 0, 0), m);
+    add_inward_cube(s, m);
     commit(s);
     return s;
 }

@@ -9,13 +9,7 @@ static il_scene *furnace_box(il_vec3 e, float rho)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho), .emission = e});
-    /* Six faces of the cube [-1,1]^3, all facing inwards. */
-    add_quad(s, v3(0, -1, 0), v3(0, 0, 1), v3(1, 0, 0), m);
-    add_quad(s, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(-1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, -1), v3(1, 0, 0), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, 1), v3(0, 1, 0), v3(1, 0, 0), m);
+    add_inward_cube(s, m);
     set_camera(s, v3(0.1f, 0.2f, 0.3f), v3(1, -0.5f, -1), v3(0, 1, 0), 70.0f);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
     return s;
