@@ -405,6 +405,9 @@ bool cli_falsecolor(const float *lux, const bool *seen, uint32_t w, uint32_t h, 
 /* A round top for the scale: 1, 2, 2.5 or 5 times a power of ten, at or
  * above the 99th percentile of the seen values (1 when there are none). */
 double cli_falsecolor_scale(const float *lux, const bool *seen, size_t n);
+/* The value at fraction q (0: the least, 1: the largest) of the finite
+ * values v[i] with seen[i]; 0 when there are none. */
+double cli_seen_quantile(const float *v, const bool *seen, size_t n, double q);
 
 /* `illum illuminance --view` (cli_illuminance_view.c): a sensor on the
  * surface each pixel sees, and the pictures of their readings. */

@@ -71,19 +71,25 @@ static int compare_float(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+double cli_seen_quantile(const float *v, const bool *seen, size_t n, double q)
+{
+    float *sorted = malloc((n ? n : 1) * sizeof *sorted);
+    size_t m = 0;
+    for (size_t i = 0; sorted && i < n; i++)
+        if (seen[i] && isfinite(v[i]))
+            sorted[m++] = v[i];
+    double x = 0.0;
+    if (m > 0) {
+        qsort(sorted, m, sizeof *sorted, compare_float);
+        x = sorted[(size_t)(q * (double)(m - 1) + 0.5)];
+    }
+    free(sorted);
+    return x;
+}
+
 double cli_falsecolor_scale(const float *lux, const bool *seen, size_t n)
 {
-    float *v = malloc((n ? n : 1) * sizeof *v);
-    size_t m = 0;
-    for (size_t i = 0; v && i < n; i++)
-        if (seen[i] && isfinite(lux[i]))
-            v[m++] = lux[i];
-    double top = 0.0;
-    if (m > 0) {
-        qsort(v, m, sizeof *v, compare_float);
-        top = v[(size_t)(0.99 * (double)(m - 1))];
-    }
-    free(v);
+    double top = cli_seen_quantile(lux, seen, n, 0.99);
     if (!(top > 0.0))
         return 1.0;
     /* The next of 1, 2, 2.5 and 5 times a power of ten at or above top. */

@@ -40,12 +40,6 @@ int cli_view_sensors(const il_scene *scene, uint32_t width, uint32_t height, cli
     return IL_EXIT_OK;
 }
 
-static int compare_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
 /* An image of the lux, the same value in every channel. */
 static int write_lux(const char *path, const float *lux, uint32_t w, uint32_t h)
 {
@@ -93,23 +87,21 @@ int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_ill
     size_t n = (size_t)w * h;
     float *lux = calloc(n, sizeof *lux);
     bool *seen = calloc(n, sizeof *seen);
-    float *sorted = malloc((g->count ? g->count : 1) * sizeof *sorted);
-    if (!lux || !seen || !sorted) {
-        free(lux), free(seen), free(sorted);
+    if (!lux || !seen) {
+        free(lux), free(seen);
         cli_error("out of memory for a %ux%u view", w, h);
         return IL_EXIT_RUNTIME;
     }
     for (size_t k = 0; k < g->count; k++) {
         lux[view->pixel_of[k]] = r[k].lux;
         seen[view->pixel_of[k]] = true;
-        sorted[k] = r[k].lux;
     }
     double top = scale_max > 0.0 ? scale_max : cli_falsecolor_scale(lux, seen, n);
     printf("view %ux%u: %zu pixels see a surface, %u samples each\n", w, h, g->count, samples);
     if (g->count) {
-        qsort(sorted, g->count, sizeof *sorted, compare_float);
-        printf("lux         minimum %.4g, median %.4g, maximum %.4g\n", (double)sorted[0],
-               (double)sorted[g->count / 2], (double)sorted[g->count - 1]);
+        printf("lux         minimum %.4g, median %.4g, maximum %.4g\n",
+               cli_seen_quantile(lux, seen, n, 0.0), cli_seen_quantile(lux, seen, n, 0.5),
+               cli_seen_quantile(lux, seen, n, 1.0));
     } else if (!quiet) {
         fprintf(stderr, "illum: warning: the camera sees no surface\n");
     }
@@ -120,6 +112,6 @@ int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_ill
         rc = dot && !strcasecmp(dot, ".png") ? write_falsecolor(outputs[k], lux, seen, w, h, top)
                                              : write_lux(outputs[k], lux, w, h);
     }
-    free(lux), free(seen), free(sorted);
+    free(lux), free(seen);
     return rc;
 }
