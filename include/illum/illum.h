@@ -307,7 +307,8 @@ il_status il_envmap_convert(const il_image *src, il_env_mapping from, il_env_map
 typedef struct il_sky_desc {
     double horizontal_lux;   /* 0 means 10,000 lx */
     double ground_albedo;    /* 0 to 1; negative means none (black ground); 0 means 0.2 */
-    uint32_t width;          /* 0 means 1024 */
+    uint32_t width;          /* 0 means 256 (the sky is smooth: more texels only cost
+                                cache misses when it is sampled) */
 } il_sky_desc;
 il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err);
 

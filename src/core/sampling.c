@@ -249,6 +249,15 @@ il_status il_distrib1d_init(il_distrib1d *d, const float *weights, uint32_t n, i
     }
     d->cdf[n] = 1.0f;
     d->integral = (float)(sum / n);
+    d->guide = il_malloc(sizeof(uint32_t) * ((size_t)n + 1), err);
+    if (!d->guide) {
+        il_distrib1d_free(d);
+        return err ? err->status : IL_ERR_MEMORY;
+    }
+    for (uint32_t k = 0; k <= n; k++) {
+        float u = (float)((double)k / n);
+        d->guide[k] = il_cdf_find(d->cdf, n, u < IL_ONE_MINUS_EPSILON ? u : IL_ONE_MINUS_EPSILON);
+    }
     return IL_OK;
 }
 
@@ -258,6 +267,7 @@ void il_distrib1d_free(il_distrib1d *d)
         return;
     free(d->func);
     free(d->cdf);
+    free(d->guide);
     memset(d, 0, sizeof *d);
 }
 
@@ -279,7 +289,18 @@ uint32_t il_distrib1d_sample_discrete(const il_distrib1d *d, float u, float *pmf
         u = 0.0f;
     if (u > IL_ONE_MINUS_EPSILON)
         u = IL_ONE_MINUS_EPSILON;
-    uint32_t i = il_cdf_find(d->cdf, d->n, u);
+    /* The bins of u's guide cell, widened in the rare case that rounding
+     * in k/n put u outside them, so that cdf[lo] <= u < cdf[hi + 1]: then
+     * the last bin with cdf[i] <= u lies in lo..hi, the one il_cdf_find
+     * over all bins gives. */
+    uint32_t k = (uint32_t)(u * (float)d->n);
+    k = k < d->n ? k : d->n - 1;
+    uint32_t lo = d->guide[k], hi = d->guide[k + 1];
+    while (lo > 0 && d->cdf[lo] > u)
+        lo--;
+    while (hi + 1 < d->n && d->cdf[hi + 1] <= u)
+        hi++;
+    uint32_t i = lo + il_cdf_find(d->cdf + lo, hi - lo + 1, u);
     if (pmf)
         *pmf = il_distrib1d_pmf(d, i);
     if (u_remapped) {

@@ -56,14 +56,20 @@ typedef struct il_distrib1d {
     uint32_t n;
     float *func;      /* n non-negative weights */
     float *cdf;       /* n+1 entries, cdf[0]=0, cdf[n]=1 */
+    uint32_t *guide;  /* n+1 entries: guide[k] is the bin of u = k/n (the last just
+                         below 1 for k = n), so a u in [k/n, (k+1)/n) falls in one of
+                         the bins guide[k] .. guide[k+1] (a guide table: Chen &
+                         Asau 1974; Devroye 1986, III.2.4) */
     float integral;   /* sum(func)/n */
 } il_distrib1d;
 
 /* Builds from n weights (copied).  All-zero weights give a uniform distribution. */
 il_status il_distrib1d_init(il_distrib1d *d, const float *weights, uint32_t n, il_error *err);
 void il_distrib1d_free(il_distrib1d *d);
-/* Picks a bin by binary search of the CDF; returns it, its probability in
- * *pmf (may be NULL) and u rescaled to [0,1) within the bin in *u_remapped (may be NULL). */
+/* Picks the bin il_cdf_find gives (the last with cdf[i] <= u), found by a
+ * binary search between the guide table's bounds, which mostly leaves one
+ * or two bins to look at; returns it, its probability in *pmf (may be NULL)
+ * and u rescaled to [0,1) within the bin in *u_remapped (may be NULL). */
 uint32_t il_distrib1d_sample_discrete(const il_distrib1d *d, float u, float *pmf, float *u_remapped);
 float il_distrib1d_pmf(const il_distrib1d *d, uint32_t i);
 

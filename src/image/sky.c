@@ -17,7 +17,7 @@ il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err)
 {
     double lux = desc && desc->horizontal_lux != 0.0 ? desc->horizontal_lux : 10000.0;
     double albedo = desc && desc->ground_albedo != 0.0 ? desc->ground_albedo : 0.2;
-    uint32_t width = desc && desc->width ? desc->width : 1024u;
+    uint32_t width = desc && desc->width ? desc->width : 256u;
     if (!out)
         return il_fail(err, IL_ERR_INVALID, "sky: no output image");
     if (!(lux > 0.0) || !isfinite(lux))

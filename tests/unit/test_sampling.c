@@ -423,6 +423,52 @@ static void test_cdf_find(void)
     }
 }
 
+/* il_distrib1d_sample_discrete (guided by its table) against il_cdf_find
+ * over the whole CDF: the same bin for every u, on distributions of 1 to
+ * 2000 bins with empty bins, single spikes and a long tail, at random u,
+ * at the guide cells' edges k/n and one float either side, and at the
+ * CDF's own values. */
+static void test_distrib1d_guide(void)
+{
+    il_pcg32 rng = il_pcg32_seed(5, 17);
+    static float w[2000];
+    const uint32_t sizes[] = {1, 2, 3, 7, 16, 100, 513, 1024, 2000};
+    int mismatches = 0, tried = 0;
+    for (size_t z = 0; z < sizeof sizes / sizeof sizes[0]; z++) {
+        uint32_t n = sizes[z];
+        for (int shape = 0; shape < 4; shape++) {
+            for (uint32_t i = 0; i < n; i++) {
+                float r = il_pcg32_float(&rng);
+                w[i] = shape == 0 ? r                                  /* random */
+                     : shape == 1 ? (r < 0.5f ? 0.0f : r)               /* half empty */
+                     : shape == 2 ? (i == n / 3 ? 1000.0f : 1e-4f * r)  /* one spike */
+                                  : powf(r, 8.0f);                      /* a long tail */
+            }
+            il_distrib1d d;
+            il_error err = {0};
+            CHECK_OK(il_distrib1d_init(&d, w, n, &err), &err);
+            for (uint32_t k = 0; k < 3 * n + 600; k++) {
+                float u;
+                if (k < 3 * n) {
+                    float edge = (float)((double)(k / 3) / n);
+                    u = k % 3 == 0 ? edge : (k % 3 == 1 ? nextafterf(edge, 0.0f) : nextafterf(edge, 1.0f));
+                } else if (k < 3 * n + 300) {
+                    u = d.cdf[il_pcg32_next(&rng) % n];
+                } else {
+                    u = il_pcg32_float(&rng);
+                }
+                if (!(u < 1.0f))
+                    u = 0x1.fffffep-1f;
+                tried++;
+                mismatches += il_distrib1d_sample_discrete(&d, u, NULL, NULL) != il_cdf_find(d.cdf, n, u);
+            }
+            il_distrib1d_free(&d);
+        }
+    }
+    printf("distrib1d guide: %d of %d draws differ from the full search\n", mismatches, tried);
+    CHECK(mismatches == 0);
+}
+
 int main(void)
 {
     g_alpha = chi2_significance(0.01, NUM_CHI2_TESTS);
@@ -448,5 +494,6 @@ int main(void)
     test_pdf_values();
     test_cosine_hemisphere_n();
     test_cdf_find();
+    test_distrib1d_guide();
     return check_report();
 }
