@@ -419,12 +419,17 @@ typedef struct cli_view {
 /* Fills g with a sensor for every pixel that sees a surface.  Prints the error. */
 int cli_view_sensors(const il_scene *scene, uint32_t width, uint32_t height, cli_sensor_grid *g,
                      cli_view *view);
-/* Prints what the view holds and writes each output: .png in false colour
- * (0 to scale_max lx; 0: cli_falsecolor_scale), .exr/.hdr/.pfm with the lux
- * in every channel.  Returns the exit status. */
+/* What a view's summary says (and --stats writes). */
+typedef struct cli_view_summary {
+    double minimum, median, maximum; /* lux over the pixels that see a surface */
+    double palette_max;              /* the top of the false-colour scale */
+} cli_view_summary;
+/* Prints what the view holds into *sum and stdout and writes each output:
+ * .png in false colour (0 to scale_max lx; 0: cli_falsecolor_scale),
+ * .exr/.hdr/.pfm with the lux in every channel.  Returns the exit status. */
 int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_illuminance *r,
                     double scale_max, const char *const *outputs, int num_outputs,
-                    uint32_t samples, bool quiet);
+                    uint32_t samples, bool quiet, cli_view_summary *sum);
 
 int cmd_illuminance(int argc, char **argv);
 int cmd_render(int argc, char **argv);

@@ -81,7 +81,7 @@ static int write_falsecolor(const char *path, const float *lux, const bool *seen
 
 int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_illuminance *r,
                     double scale_max, const char *const *outputs, int num_outputs,
-                    uint32_t samples, bool quiet)
+                    uint32_t samples, bool quiet, cli_view_summary *sum)
 {
     uint32_t w = view->width, h = view->height;
     size_t n = (size_t)w * h;
@@ -96,12 +96,17 @@ int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_ill
         lux[view->pixel_of[k]] = r[k].lux;
         seen[view->pixel_of[k]] = true;
     }
-    double top = scale_max > 0.0 ? scale_max : cli_falsecolor_scale(lux, seen, n);
+    *sum = (cli_view_summary){
+        .minimum = cli_seen_quantile(lux, seen, n, 0.0),
+        .median = cli_seen_quantile(lux, seen, n, 0.5),
+        .maximum = cli_seen_quantile(lux, seen, n, 1.0),
+        .palette_max = scale_max > 0.0 ? scale_max : cli_falsecolor_scale(lux, seen, n),
+    };
+    double top = sum->palette_max;
     printf("view %ux%u: %zu pixels see a surface, %u samples each\n", w, h, g->count, samples);
     if (g->count) {
-        printf("lux         minimum %.4g, median %.4g, maximum %.4g\n",
-               cli_seen_quantile(lux, seen, n, 0.0), cli_seen_quantile(lux, seen, n, 0.5),
-               cli_seen_quantile(lux, seen, n, 1.0));
+        printf("lux         minimum %.4g, median %.4g, maximum %.4g\n", sum->minimum, sum->median,
+               sum->maximum);
     } else if (!quiet) {
         fprintf(stderr, "illum: warning: the camera sees no surface\n");
     }

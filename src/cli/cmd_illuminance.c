@@ -6,6 +6,8 @@
 #include <string.h>
 #include <strings.h>
 
+#include <cjson/cJSON.h>
+
 #include "cli/cli.h"
 
 static const char *help =
@@ -39,6 +41,8 @@ static const char *help =
     "                         light only (default 8)\n"
     "  --sampler sobol|pcg    (default sobol)\n"
     "  --seed S  --threads T  --quiet\n"
+    "  --stats STATS.json     the summary as JSON (the figures printed, the run's\n"
+    "                         samples, rays and seconds)\n"
     "  -o OUT.csv             every reading: x,y,z,nx,ny,nz,lux,lux_error,\n"
     "                         irradiance_r,irradiance_g,irradiance_b (W/m^2);\n"
     "                         with --view: -o OUT.png|exr|hdr|pfm, up to 4 times\n";
@@ -46,7 +50,7 @@ static const char *help =
 #define MAX_OUTPUTS 4
 
 typedef struct options {
-    const char *scene, *points;
+    const char *scene, *points, *stats;
     const char *outputs[MAX_OUTPUTS];
     int num_outputs;
     bool has_plane, has_area, view;
@@ -105,7 +109,8 @@ static int parse_options(int argc, char **argv, options *o)
                            !strcmp(a, "--scale-max") || !strcmp(a, "--plane") || !strcmp(a, "--area") || !strcmp(a, "--margin") ||
                            !strcmp(a, "--spacing") || !strcmp(a, "--points") ||
                            !strcmp(a, "--samples") || !strcmp(a, "--max-depth") ||
-                           !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output");
+                           !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output") ||
+                           !strcmp(a, "--stats");
         if (!takes_value) {
             rc = cli_scene_argument("illuminance", a, &o->scene);
             if (rc != IL_EXIT_OK)
@@ -128,6 +133,8 @@ static int parse_options(int argc, char **argv, options *o)
             ok = cli_parse_double(a, v, 1e-4, 1e6, &o->spacing);
         } else if (!strcmp(a, "--points")) {
             o->points = v;
+        } else if (!strcmp(a, "--stats")) {
+            o->stats = v;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
             ok = cli_parse_u32(a, v, 1, 16384, !strcmp(a, "--width") ? &o->width : &o->height);
         } else if (!strcmp(a, "--scale-max")) {
@@ -223,21 +230,37 @@ static const char *lux_text(double v, char buf[32])
 
 static float axis_coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
 
-static void print_summary(const options *o, const cli_sensor_grid *g, const il_illuminance *r,
-                          const il_illuminance_stats *st)
+/* The figures of a plane's or a file's readings. */
+typedef struct summary {
+    size_t lo, hi, dark;             /* the sensors of the least and most lux; how many read 0 */
+    double average, worst_rel;       /* lux; the largest standard error over its reading */
+    double outdoor;                  /* the overcast sky's lux when --sky-only, else 0 */
+} summary;
+
+static summary summarize(const options *o, const cli_sensor_grid *g, const il_illuminance *r)
 {
-    static const char names[] = "xyz";
-    size_t lo = 0, hi = 0, dark = 0;
-    double sum = 0.0, worst_rel = 0.0;
+    summary m = {0};
+    double sum = 0.0;
     for (size_t i = 0; i < g->count; i++) {
         sum += r[i].lux;
-        dark += r[i].lux == 0.0f;
-        lo = r[i].lux < r[lo].lux ? i : lo;
-        hi = r[i].lux > r[hi].lux ? i : hi;
+        m.dark += r[i].lux == 0.0f;
+        m.lo = r[i].lux < r[m.lo].lux ? i : m.lo;
+        m.hi = r[i].lux > r[m.hi].lux ? i : m.hi;
         if (r[i].lux > 0.0f)
-            worst_rel = fmax(worst_rel, r[i].lux_error / r[i].lux);
+            m.worst_rel = fmax(m.worst_rel, r[i].lux_error / r[i].lux);
     }
-    double avg = sum / (double)g->count;
+    m.average = sum / (double)g->count;
+    if (o->env.sky && o->env.sky_only)
+        m.outdoor = o->env.sky_desc.horizontal_lux > 0.0 ? o->env.sky_desc.horizontal_lux : 10000.0;
+    return m;
+}
+
+static void print_summary(const options *o, const cli_sensor_grid *g, const il_illuminance *r,
+                          const il_illuminance_stats *st, const summary *m)
+{
+    static const char names[] = "xyz";
+    size_t lo = m->lo, hi = m->hi, dark = m->dark;
+    double avg = m->average, worst_rel = m->worst_rel;
     if (g->cols)
         printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
                names[o->plane.axis], (double)o->plane.value, o->plane.sign > 0 ? '+' : '-',
@@ -256,10 +279,10 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
                (double)r[lo].lux / avg, r[hi].lux > 0.0f ? (double)r[lo].lux / r[hi].lux : 0.0);
     if (o->env.sky && !o->env.sky_only)
         printf("daylight    the scene's own lights count too: --sky-only gives the daylight factor\n");
-    if (o->env.sky && o->env.sky_only) {
+    if (m->outdoor > 0.0) {
         /* The daylight factor: indoor over unobstructed outdoor horizontal
          * illuminance under the overcast sky (CIE), in per cent. */
-        double out = o->env.sky_desc.horizontal_lux > 0.0 ? o->env.sky_desc.horizontal_lux : 10000.0;
+        double out = m->outdoor;
         printf("daylight    factor %.3g%% average, %.3g%% minimum, %.3g%% maximum (%g lx outdoors)\n",
                100.0 * avg / out, 100.0 * r[lo].lux / out, 100.0 * r[hi].lux / out, out);
     }
@@ -282,6 +305,48 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
     if (dark && !o->run_opts.quiet)
         fprintf(stderr, "illum: warning: %zu of %zu sensors read 0 lx: inside an object, or "
                 "facing away from all light?\n", dark, g->count);
+}
+
+/* --stats: the run and the figures of the summary. */
+static int write_stats(const options *o, size_t sensors, const il_illuminance_stats *st,
+                       const il_illuminance *r, const summary *m, const cli_view_summary *v)
+{
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scene", o->scene);
+    cJSON_AddStringToObject(j, "mode", o->view ? "view" : (o->points ? "points" : "plane"));
+    cJSON_AddNumberToObject(j, "sensors", (double)sensors);
+    cJSON_AddNumberToObject(j, "samples", st->samples);
+    cJSON_AddNumberToObject(j, "max_depth", o->desc.max_depth ? o->desc.max_depth : 8);
+    cJSON_AddNumberToObject(j, "seed", (double)o->desc.seed);
+    cJSON_AddNumberToObject(j, "seconds", st->seconds);
+    cJSON_AddNumberToObject(j, "rays", (double)st->rays);
+    cJSON_AddNumberToObject(j, "nonfinite_samples", (double)st->nonfinite_samples);
+    cJSON *lux = cJSON_AddObjectToObject(j, "lux");
+    if (v) {
+        cJSON_AddNumberToObject(lux, "minimum", v->minimum);
+        cJSON_AddNumberToObject(lux, "median", v->median);
+        cJSON_AddNumberToObject(lux, "maximum", v->maximum);
+        cJSON_AddNumberToObject(lux, "palette_max", v->palette_max);
+    } else {
+        double lo = r[m->lo].lux, hi = r[m->hi].lux;
+        cJSON_AddNumberToObject(lux, "average", m->average);
+        cJSON_AddNumberToObject(lux, "minimum", lo);
+        cJSON_AddNumberToObject(lux, "maximum", hi);
+        cJSON_AddNumberToObject(lux, "uniformity_min_average", m->average > 0.0 ? lo / m->average : 0.0);
+        cJSON_AddNumberToObject(lux, "uniformity_min_maximum", hi > 0.0 ? lo / hi : 0.0);
+        cJSON_AddNumberToObject(lux, "largest_relative_error", m->worst_rel);
+        cJSON_AddNumberToObject(lux, "dark_sensors", (double)m->dark);
+        if (m->outdoor > 0.0) {
+            cJSON *df = cJSON_AddObjectToObject(j, "daylight_factor");
+            cJSON_AddNumberToObject(df, "outdoor_lux", m->outdoor);
+            cJSON_AddNumberToObject(df, "average", 100.0 * m->average / m->outdoor);
+            cJSON_AddNumberToObject(df, "minimum", 100.0 * lo / m->outdoor);
+            cJSON_AddNumberToObject(df, "maximum", 100.0 * hi / m->outdoor);
+        }
+    }
+    bool ok = cli_write_json(o->stats, j);
+    cJSON_Delete(j);
+    return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
 }
 
 /* The sensors of the chosen mode: a file's, a plane's grid, or the view's
@@ -315,8 +380,12 @@ int cmd_illuminance(int argc, char **argv)
     int rc = parse_options(argc, argv, &o);
     if (rc != IL_EXIT_OK)
         return rc < 0 ? IL_EXIT_OK : rc;
+    const char *files[MAX_OUTPUTS + 1];
+    for (int k = 0; k < o.num_outputs; k++)
+        files[k] = o.outputs[k];
+    files[o.num_outputs] = o.stats;
     if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK ||
-        (rc = cli_check_outputs(o.outputs, o.num_outputs)) != IL_EXIT_OK)
+        (rc = cli_check_outputs(files, o.num_outputs + 1)) != IL_EXIT_OK)
         return rc;
 
     il_scene *scene = NULL;
@@ -357,17 +426,23 @@ int cmd_illuminance(int argc, char **argv)
         cli_error("%s", err.message);
         rc = cli_exit_for(s);
     } else {
-        if (o.view)
+        cli_view_summary vs;
+        summary sm = {0};
+        if (o.view) {
             rc = cli_view_finish(&view, &g, r, o.scale_max, o.outputs, o.num_outputs, st.samples,
-                                 o.run_opts.quiet);
-        else
-            print_summary(&o, &g, r, &st);
+                                 o.run_opts.quiet, &vs);
+        } else {
+            sm = summarize(&o, &g, r);
+            print_summary(&o, &g, r, &st, &sm);
+        }
         if (!o.run_opts.quiet)
             fprintf(stderr, "illuminance: %.2f s, %.3g M rays/s%s\n", st.seconds,
                     st.seconds > 0.0 ? (double)st.rays / st.seconds * 1e-6 : 0.0,
                     st.nonfinite_samples ? " (some samples were NaN or infinite and were dropped)" : "");
         for (int k = 0; !o.view && rc == IL_EXIT_OK && k < o.num_outputs; k++)
             rc = write_csv(o.outputs[k], &g, r);
+        if (rc == IL_EXIT_OK && o.stats)
+            rc = write_stats(&o, g.count, &st, r, &sm, o.view ? &vs : NULL);
         if (rc == IL_EXIT_OK && cli_interrupted)
             rc = IL_EXIT_INTERRUPTED;
     }

@@ -91,6 +91,14 @@ awk -v v="$centre" 'BEGIN { d = v - 1707.5; exit !(d < 0.01 && d > -0.01) }' ||
 checks=$((checks + 1))
 [ "$(od -A n -t u1 -j 16 -N 8 view.png | tr -s ' ')" = " 0 0 0 95 0 0 0 33" ] ||
     fail "view.png: not 95x33 (the view and its legend)"
+expect_exit 0 "view, --stats" -- "$ILLUM" illuminance lamp.json "${view[@]}" --width 9 --height 9 \
+    --samples 4 -q --stats view.json -o v9.png
+for k in '"mode":[[:space:]]*"view"' '"sensors":[[:space:]]*81' '"median":' '"palette_max":[[:space:]]*2000'; do
+    checks=$((checks + 1))
+    grep -q "$k" view.json || fail "view.json lacks $k"
+done
+checks=$((checks + 1))
+grep -q '"daylight_factor"' view.json && fail "view.json: a daylight factor without the sky"
 expect_exit 0 "view, --scale-max" -- "$ILLUM" illuminance lamp.json "${view[@]}" --width 16 --height 16 \
     --samples 4 --scale-max 500 -q -o scaled.png
 expect_stdout "palette     0 .. 500 lx" "--scale-max"
@@ -105,6 +113,13 @@ checks=$((checks + 1))
 expect_exit 0 "overcast, sky only" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-only \
     --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 1024
 expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% average" "sky only: DF 100%"
+expect_exit 0 "overcast, --stats" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-only \
+    --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 64 -q --stats sky.json
+for k in '"mode":[[:space:]]*"plane"' '"sensors":[[:space:]]*4' '"samples":[[:space:]]*64' \
+         '"average":' '"uniformity_min_average":' '"daylight_factor":' '"outdoor_lux":[[:space:]]*10000'; do
+    checks=$((checks + 1))
+    grep -q "$k" sky.json || fail "sky.json lacks $k"
+done
 expect_exit 0 "overcast, lamp on" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-lux 20000 \
     --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 64
 expect_stdout "--sky-only gives the daylight factor" "sky and lamp"
@@ -125,6 +140,7 @@ expect_exit 2 "width without view" -- "$ILLUM" illuminance lamp.json --plane y=0
 expect_exit 2 "camera without view" -- "$ILLUM" illuminance lamp.json --plane y=0 --fov 30 -o bad.csv
 expect_exit 1 "view, width 0" -- "$ILLUM" illuminance lamp.json --view --width 0 -o bad.png
 expect_no_file bad.png "bad view input"
+expect_exit 1 "stats in a missing folder" -- "$ILLUM" illuminance lamp.json --plane y=0 --stats no/such/s.json
 expect_exit 2 "no --plane, --points or --view" -- "$ILLUM" illuminance lamp.json -o bad.csv
 expect_exit 2 "both --plane and --points" -- "$ILLUM" illuminance lamp.json --plane y=0 --points points.csv -o bad.csv
 expect_exit 2 "--spacing with --points" -- "$ILLUM" illuminance lamp.json --points points.csv --spacing 1 -o bad.csv
