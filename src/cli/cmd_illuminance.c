@@ -1,5 +1,5 @@
-/* `illum illuminance SCENE`: light-meter readings in lux on a work plane
- * or at given points (docs/illuminance.md). */
+/* `illum illuminance SCENE`: light-meter readings in lux on a work plane,
+ * at given points, or over what the camera sees (docs/illuminance.md). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
