@@ -926,6 +926,30 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
 il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t height,
                             il_sensor *sensors, bool *seen, il_error *err);
 
+/* Sensors spread over named surfaces: the triangles of every mesh whose name,
+ * or whose material's name, contains desc->name (case-insensitive), about one
+ * sensor per spacing^2 of area (a triangle too small for one of its own gets
+ * one as the area adds up), each on the front of its triangle (the geometric
+ * normal, turned to the side of the vertex normals).  With desc->facing not
+ * zero, only triangles whose normal is within 45 degrees of it.  Writes up to
+ * `capacity` sensors into out (may be NULL to count them) and fills *info.
+ * IL_ERR_INVALID, naming the scene's meshes, when nothing matches. */
+typedef struct il_surface_sensor_desc {
+    const char *name;        /* part of a mesh or material name; "" or NULL: all */
+    il_vec3 facing;          /* zero: any orientation */
+    float spacing;           /* metres between sensors; 0 means 0.1 */
+} il_surface_sensor_desc;
+
+typedef struct il_surface_sensor_info {
+    size_t count;            /* sensors placed (all of them, even beyond capacity) */
+    uint64_t triangles;      /* triangles that matched */
+    double area;             /* their area, m^2 */
+} il_surface_sensor_info;
+
+il_status il_surface_sensors(const il_scene *scene, const il_surface_sensor_desc *desc,
+                             il_sensor *out, size_t capacity, il_surface_sensor_info *info,
+                             il_error *err);
+
 /* ------------------------------------------------------------------- bake */
 
 /* Light written onto the geometry: the scene's meshes as the method meshed

@@ -367,7 +367,9 @@ int cli_camera_read_file(cli_camera_options *o);
 /* Overrides the scene's camera with what was given (before rendering). */
 int cli_camera_apply(il_scene *scene, const cli_camera_options *o);
 
-/* Where `illum illuminance` measures (cli_sensors.c). */
+/* Where `illum illuminance` measures (cli_sensors.c), at most this many sensors. */
+#define CLI_MAX_SENSORS 10000000u
+
 typedef struct cli_plane {
     int axis;                        /* 0 x, 1 y, 2 z: the plane is axis = value */
     float sign;                      /* +1: sensors face +axis, -1: -axis */

@@ -9,7 +9,6 @@
 
 #include "cli/cli.h"
 
-#define MAX_SENSORS 10000000u
 
 static float coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
 
@@ -74,9 +73,9 @@ int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing,
     /* As many cells as the nearest whole number of lengths over p, with a
      * sensor at the centre of each (the standard's grid). */
     double n0 = fmax(1.0, floor(len0 / p + 0.5)), n1 = fmax(1.0, floor(len1 / p + 0.5));
-    if (n0 * n1 > MAX_SENSORS) {
+    if (n0 * n1 > CLI_MAX_SENSORS) {
         cli_error("a grid of %.0f by %.0f points is more than %u; give a larger --spacing", n0, n1,
-                  MAX_SENSORS);
+                  CLI_MAX_SENSORS);
         return IL_EXIT_BAD_INPUT;
     }
     g->axes[0] = a0;
@@ -183,8 +182,8 @@ int cli_read_sensors(const char *path, cli_sensor_grid *g)
             }
             sn.normal = (il_vec3){(float)(v[3] / len), (float)(v[4] / len), (float)(v[5] / len)};
         }
-        if (g->count == MAX_SENSORS) {
-            cli_error("%s: more than %u sensors", path, MAX_SENSORS);
+        if (g->count == CLI_MAX_SENSORS) {
+            cli_error("%s: more than %u sensors", path, CLI_MAX_SENSORS);
             rc = IL_EXIT_BAD_INPUT;
             break;
         }

@@ -11,7 +11,8 @@
 #include "cli/cli.h"
 
 static const char *help =
-    "usage: illum illuminance SCENE (--plane AXIS=VALUE | --points FILE | --view) [options]\n"
+    "usage: illum illuminance SCENE (--plane AXIS=VALUE | --points FILE | --surface NAME |\n"
+    "                                 --view) [options]\n"
     "\n"
     "Measures the illuminance (lux) that a light meter would read, from every light\n"
     "of the scene and their interreflections, with the path tracer's paths.\n"
@@ -27,6 +28,10 @@ static const char *help =
     "  --margin M             keep M metres from the edges of the area (default 0)\n"
     "  --spacing S            cells of about S metres, a sensor at the centre of each;\n"
     "                         default: EN 12464-1's largest cell, 0.2 * 5^log10(d)\n"
+    "  --surface NAME         sensors spread over the meshes whose name (or whose\n"
+    "                         material's) contains NAME, one per --spacing^2 (default\n"
+    "                         0.1 m), each on the front of its triangle; --facing +y\n"
+    "                         (or any axis, or X,Y,Z) keeps the faces within 45 degrees\n"
     "  --points FILE          sensors from a text file: one 'x y z [nx ny nz]' a line\n"
     "                         (commas or spaces; normal +y when omitted; '#' comments)\n"
     "  --view                 a sensor on the surface each pixel of the camera sees:\n"
@@ -50,7 +55,7 @@ static const char *help =
 #define MAX_OUTPUTS 4
 
 typedef struct options {
-    const char *scene, *points, *stats;
+    const char *scene, *points, *stats, *surface;
     const char *outputs[MAX_OUTPUTS];
     int num_outputs;
     bool has_plane, has_area, view;
@@ -62,7 +67,29 @@ typedef struct options {
     il_render_desc run;               /* --seed, --threads through cli_run_option */
     cli_run_options run_opts;
     cli_env_options env;
+    il_vec3 facing;                   /* --facing: zero when not given */
+    il_surface_sensor_info surface_info;
 } options;
+
+/* "+y", "-x", "z" or "X,Y,Z". */
+static bool parse_direction(const char *opt, const char *s, il_vec3 *out)
+{
+    const char *p = s;
+    float sign = *p == '-' ? -1.0f : 1.0f;
+    if (*p == '-' || *p == '+')
+        p++;
+    if ((*p == 'x' || *p == 'y' || *p == 'z') && p[1] == '\0') {
+        *out = (il_vec3){*p == 'x' ? sign : 0.0f, *p == 'y' ? sign : 0.0f, *p == 'z' ? sign : 0.0f};
+        return true;
+    }
+    if (!cli_parse_vec3(opt, s, out))
+        return false;
+    if (out->x == 0.0f && out->y == 0.0f && out->z == 0.0f) {
+        cli_error("%s: the direction must not be zero", opt);
+        return false;
+    }
+    return true;
+}
 
 static int parse_area(const char *opt, const char *s, double area[4])
 {
@@ -110,7 +137,8 @@ static int parse_options(int argc, char **argv, options *o)
                            !strcmp(a, "--spacing") || !strcmp(a, "--points") ||
                            !strcmp(a, "--samples") || !strcmp(a, "--max-depth") ||
                            !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output") ||
-                           !strcmp(a, "--stats");
+                           !strcmp(a, "--stats") || !strcmp(a, "--surface") ||
+                           !strcmp(a, "--facing");
         if (!takes_value) {
             rc = cli_scene_argument("illuminance", a, &o->scene);
             if (rc != IL_EXIT_OK)
@@ -135,6 +163,10 @@ static int parse_options(int argc, char **argv, options *o)
             o->points = v;
         } else if (!strcmp(a, "--stats")) {
             o->stats = v;
+        } else if (!strcmp(a, "--surface")) {
+            o->surface = v;
+        } else if (!strcmp(a, "--facing")) {
+            ok = parse_direction(a, v, &o->facing);
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
             ok = cli_parse_u32(a, v, 1, 16384, !strcmp(a, "--width") ? &o->width : &o->height);
         } else if (!strcmp(a, "--scale-max")) {
@@ -161,13 +193,21 @@ static int parse_options(int argc, char **argv, options *o)
     }
     if (cli_require_scene("illuminance", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    if (o->has_plane + (o->points != NULL) + o->view != 1) {
-        cli_error("illuminance: give one of --plane AXIS=VALUE, --points FILE and --view (see "
-                  "'illum illuminance --help')");
+    if (o->has_plane + (o->points != NULL) + (o->surface != NULL) + o->view != 1) {
+        cli_error("illuminance: give one of --plane AXIS=VALUE, --points FILE, --surface NAME and "
+                  "--view (see 'illum illuminance --help')");
         return IL_EXIT_USAGE;
     }
-    if (!o->has_plane && (o->has_area || o->margin > 0.0 || o->spacing > 0.0)) {
-        cli_error("illuminance: --area, --margin and --spacing shape a --plane grid");
+    if (!o->has_plane && (o->has_area || o->margin > 0.0)) {
+        cli_error("illuminance: --area and --margin shape a --plane grid");
+        return IL_EXIT_USAGE;
+    }
+    if (!o->has_plane && !o->surface && o->spacing > 0.0) {
+        cli_error("illuminance: --spacing goes with --plane or --surface");
+        return IL_EXIT_USAGE;
+    }
+    if (!o->surface && (o->facing.x != 0.0f || o->facing.y != 0.0f || o->facing.z != 0.0f)) {
+        cli_error("illuminance: --facing goes with --surface");
         return IL_EXIT_USAGE;
     }
     bool camera = o->camera.file || o->camera.has_pos || o->camera.has_target ||
@@ -265,6 +305,10 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
         printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
                names[o->plane.axis], (double)o->plane.value, o->plane.sign > 0 ? '+' : '-',
                names[o->plane.axis], g->cols, g->rows, g->cell[0], g->cell[1]);
+    else if (o->surface)
+        printf("%zu sensors on '%s': %llu triangles, %.4g m^2, one sensor per %.3g m^2\n", g->count,
+               o->surface, (unsigned long long)o->surface_info.triangles, o->surface_info.area,
+               o->surface_info.area / (double)g->count);
     else
         printf("%zu sensors from %s\n", g->count, o->points);
     il_vec3 pl = g->sensors[lo].position, ph = g->sensors[hi].position;
@@ -313,7 +357,7 @@ static int write_stats(const options *o, size_t sensors, const il_illuminance_st
 {
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "mode", o->view ? "view" : (o->points ? "points" : "plane"));
+    cJSON_AddStringToObject(j, "mode", o->view ? "view" : o->points ? "points" : o->surface ? "surface" : "plane");
     cJSON_AddNumberToObject(j, "sensors", (double)sensors);
     cJSON_AddNumberToObject(j, "samples", st->samples);
     cJSON_AddNumberToObject(j, "max_depth", o->desc.max_depth ? o->desc.max_depth : 8);
@@ -349,12 +393,44 @@ static int write_stats(const options *o, size_t sensors, const il_illuminance_st
     return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
 }
 
+/* --surface: counted first, then placed. */
+static int surface_sensors(options *o, const il_scene *scene, cli_sensor_grid *g)
+{
+    il_surface_sensor_desc d = {.name = o->surface, .facing = o->facing, .spacing = (float)o->spacing};
+    il_error err = {0};
+    il_status st = il_surface_sensors(scene, &d, NULL, 0, &o->surface_info, &err);
+    if (st == IL_OK && o->surface_info.count > CLI_MAX_SENSORS) {
+        cli_error("%zu sensors on '%s' are more than %u; give a larger --spacing",
+                  o->surface_info.count, o->surface, CLI_MAX_SENSORS);
+        return IL_EXIT_BAD_INPUT;
+    }
+    if (st == IL_OK && o->surface_info.count == 0) {
+        cli_error("the surfaces named like '%s' (%.3g m^2) are smaller than one --spacing cell; "
+                  "give a smaller --spacing", o->surface, o->surface_info.area);
+        return IL_EXIT_BAD_INPUT;
+    }
+    if (st == IL_OK && !(g->sensors = malloc(o->surface_info.count * sizeof *g->sensors))) {
+        cli_error("out of memory for %zu sensors", o->surface_info.count);
+        return IL_EXIT_RUNTIME;
+    }
+    if (st == IL_OK)
+        st = il_surface_sensors(scene, &d, g->sensors, o->surface_info.count, &o->surface_info, &err);
+    if (st != IL_OK) {
+        cli_error("%s", err.message);
+        return cli_exit_for(st);
+    }
+    g->count = o->surface_info.count;
+    return IL_EXIT_OK;
+}
+
 /* The sensors of the chosen mode: a file's, a plane's grid, or the view's
  * (view->pixel_of set). */
 static int make_sensors(options *o, il_scene *scene, cli_sensor_grid *g, cli_view *view)
 {
     if (o->points)
         return cli_read_sensors(o->points, g);
+    if (o->surface)
+        return surface_sensors(o, scene, g);
     if (o->view) {
         int rc = cli_camera_apply(scene, &o->camera);
         if (rc != IL_EXIT_OK)

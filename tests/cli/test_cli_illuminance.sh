@@ -69,6 +69,21 @@ cmp -s t1.csv t2.csv || fail "readings differ between 1 and 2 threads"
 checks=$((checks + 1))
 [ "$(wc -l < t1.csv)" = 17 ] || fail "t1.csv: $(wc -l < t1.csv) lines, expected a header and 16"
 
+# Surfaces: the office's desk tops (six 1.4 x 0.7 m tops; their faces
+# facing up), one sensor per 0.01 m^2; every face of them without --facing.
+expect_exit 0 "surface" -- "$ILLUM" illuminance office --surface desk_tops --facing +y --samples 8 \
+    -o desks.csv --stats desks.json
+expect_stdout "588 sensors on 'desk_tops': 12 triangles, 5.88 m^2, one sensor per 0.01 m^2" "surface"
+checks=$((checks + 1))
+[ "$(wc -l < desks.csv)" = 589 ] || fail "desks.csv: $(wc -l < desks.csv) lines, expected 589"
+checks=$((checks + 1))
+awk -F, 'NR > 1 && ($2 != 0.75 || $5 != 1) { bad = 1 } END { exit bad }' desks.csv ||
+    fail "desks.csv: a sensor off the tops (y 0.75, facing +y)"
+checks=$((checks + 1))
+grep -q '"mode":[[:space:]]*"surface"' desks.json || fail "desks.json: mode"
+expect_exit 0 "surface, every face" -- "$ILLUM" illuminance office --surface DESK_TOPS --spacing 0.2 --samples 4
+expect_stdout "on 'DESK_TOPS': 72 triangles" "surface, every face"
+
 # Ctrl-C: stops at the next round and writes the readings so far.
 expect_interrupted 1 "interrupted" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 16777216 \
     -o stopped.csv
@@ -140,8 +155,16 @@ expect_exit 2 "width without view" -- "$ILLUM" illuminance lamp.json --plane y=0
 expect_exit 2 "camera without view" -- "$ILLUM" illuminance lamp.json --plane y=0 --fov 30 -o bad.csv
 expect_exit 1 "view, width 0" -- "$ILLUM" illuminance lamp.json --view --width 0 -o bad.png
 expect_no_file bad.png "bad view input"
+expect_exit 1 "surface nothing matches" -- "$ILLUM" illuminance office --surface walnut -o bad.csv
+expect_stderr "the scene's meshes: 'floor'" "surface nothing matches: the names"
+expect_exit 1 "surface facing no face" -- "$ILLUM" illuminance office --surface desk_tops --facing 1,1,1 -o bad.csv
+expect_exit 1 "facing zero" -- "$ILLUM" illuminance office --surface desk_tops --facing 0,0,0 -o bad.csv
+expect_exit 2 "facing without surface" -- "$ILLUM" illuminance office --plane y=0.8 --facing +y -o bad.csv
+expect_exit 2 "margin with surface" -- "$ILLUM" illuminance office --surface desk --margin 1 -o bad.csv
+expect_exit 1 "surface smaller than a cell" -- "$ILLUM" illuminance office --surface desk_tops --spacing 1000 -o bad.csv
+expect_no_file bad.csv "bad surface input"
 expect_exit 1 "stats in a missing folder" -- "$ILLUM" illuminance lamp.json --plane y=0 --stats no/such/s.json
-expect_exit 2 "no --plane, --points or --view" -- "$ILLUM" illuminance lamp.json -o bad.csv
+expect_exit 2 "no --plane, --points, --surface or --view" -- "$ILLUM" illuminance lamp.json -o bad.csv
 expect_exit 2 "both --plane and --points" -- "$ILLUM" illuminance lamp.json --plane y=0 --points points.csv -o bad.csv
 expect_exit 2 "--spacing with --points" -- "$ILLUM" illuminance lamp.json --points points.csv --spacing 1 -o bad.csv
 expect_exit 2 "unknown option" -- "$ILLUM" illuminance lamp.json --plane y=0 --bogus -o bad.csv

@@ -238,6 +238,103 @@ static void test_wave_matches_scalar(void)
     il_scene_release(s);
 }
 
+/* A named box, its faces outwards: a desk top of 2 x 0.05 x 1 m at y 0.7-0.75. */
+static void add_desk(il_scene *s, uint32_t mat)
+{
+    const float lo[3] = {-1.0f, 0.7f, -0.5f}, hi[3] = {1.0f, 0.75f, 0.5f};
+    float p[24 * 3];
+    uint32_t idx[36];
+    int nv = 0, ni = 0;
+    for (int a = 0; a < 3; a++)
+        for (int side = 0; side < 2; side++) {
+            int b = (a + 1) % 3, c = (a + 2) % 3;
+            float sign = side ? 1.0f : -1.0f;
+            const float bc[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            for (int k = 0; k < 4; k++) {
+                float q[3];
+                q[a] = side ? hi[a] : lo[a];
+                q[b] = bc[k][0] ? hi[b] : lo[b];
+                q[c] = bc[k][1] ? hi[c] : lo[c];
+                memcpy(p + 3 * (nv + k), q, sizeof q);
+            }
+            /* b x c is +a: counter-clockwise seen from +a keeps the order. */
+            const uint32_t fwd[6] = {0, 1, 2, 0, 2, 3}, back[6] = {0, 2, 1, 0, 3, 2};
+            for (int k = 0; k < 6; k++)
+                idx[ni + k] = (uint32_t)nv + (sign > 0 ? fwd[k] : back[k]);
+            nv += 4, ni += 6;
+        }
+    il_mesh_desc m = {.name = "Desk_Top", .num_vertices = 24, .num_triangles = 12, .positions = p,
+                      .indices = idx, .material = mat};
+    CHECK_OK(il_scene_add_mesh(s, &m, &g_err), &g_err);
+}
+
+/* il_surface_sensors on a desk: its top alone (facing +y) or every face,
+ * found by mesh or material name; the mean reading over the top under a
+ * point light 1 m above its centre against the exact area average
+ * E = I Omega / A (every dA receives I cos / d^2 = I dOmega / dA, Omega the
+ * solid angle the top subtends at the light: 4 asin(ab / sqrt((a^2 +
+ * h^2)(b^2 + h^2))) for half-sides a, b at height h). */
+static void test_surface_sensors(void)
+{
+    il_scene *s = new_scene();
+    uint32_t oak = add_material(s, (il_material_desc){.name = "oak", .diffuse = v3s(0.0f)});
+    add_desk(s, oak);
+    uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0.0f)});
+    add_floor(s, 0.0f, 3.0f, black);
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1.75f, 0),
+                                                    .intensity = v3s(10.0f)}, &g_err), &g_err);
+    commit(s);
+
+    il_surface_sensor_info info;
+    il_surface_sensor_desc top = {.name = "desk", .facing = v3(0, 1, 0), .spacing = 0.1f};
+    CHECK_OK(il_surface_sensors(s, &top, NULL, 0, &info, &g_err), &g_err);
+    printf("desk top: %zu sensors, %llu triangles, %.4f m^2\n", info.count,
+           (unsigned long long)info.triangles, info.area);
+    CHECK(info.count == 200 && info.triangles == 2);
+    CHECK_NEAR(info.area, 2.0, 1e-5);
+    static il_sensor sn[500];
+    static il_illuminance r[500];
+    CHECK_OK(il_surface_sensors(s, &top, sn, 500, &info, &g_err), &g_err);
+    bool on_top = true;
+    for (size_t i = 0; i < info.count; i++)
+        on_top = on_top && fabsf(sn[i].position.y - 0.75f) < 1e-5f && sn[i].normal.y > 0.9999f &&
+                 fabsf(sn[i].position.x) <= 1.0f && fabsf(sn[i].position.z) <= 0.5f;
+    CHECK(on_top);
+    measure(s, sn, info.count, (il_illuminance_desc){.samples = 16, .max_depth = 1}, r, NULL);
+    double sum = 0.0;
+    for (size_t i = 0; i < info.count; i++)
+        sum += r[i].irradiance.x;
+    double a = 1.0, b = 0.5, h = 1.0;
+    double omega = 4.0 * asin(a * b / sqrt((a * a + h * h) * (b * b + h * h)));
+    printf("desk top under the lamp: mean %.5f W/m^2, area average I Omega / A = %.5f\n",
+           sum / (double)info.count, 10.0 * omega / 2.0);
+    CHECK_REL(sum / (double)info.count, 10.0 * omega / 2.0, 0.005);
+
+    /* Every face, found by the material's name: 2 (2 x 1) + 2 (2 x 0.05) + 2 (1 x 0.05). */
+    il_surface_sensor_desc all = {.name = "OAK", .spacing = 0.1f};
+    CHECK_OK(il_surface_sensors(s, &all, sn, 500, &info, &g_err), &g_err);
+    printf("every face: %zu sensors, %llu triangles, %.4f m^2\n", info.count,
+           (unsigned long long)info.triangles, info.area);
+    CHECK(info.count == 430 && info.triangles == 12);
+    CHECK_NEAR(info.area, 4.3, 1e-4);
+    int outward = 0;
+    for (size_t i = 0; i < info.count; i++) {
+        il_vec3 q = sn[i].position, n = sn[i].normal, c = v3(0, 0.725f, 0);
+        outward += v3_dot(n, v3_sub(q, c)) > 0.0f && fabsf(v3_length(n) - 1.0f) < 1e-5f;
+    }
+    CHECK(outward == 430);
+
+    il_error err = {0};
+    il_surface_sensor_desc none = {.name = "walnut"};
+    CHECK(il_surface_sensors(s, &none, NULL, 0, &info, &err) == IL_ERR_INVALID);
+    printf("no match: %s\n", err.message);
+    CHECK(strstr(err.message, "'Desk_Top'") != NULL);
+    il_surface_sensor_desc sideways = {.name = "desk", .facing = v3(1, 1, 1)}; /* 54.7 degrees from each face */
+    CHECK(il_surface_sensors(s, &sideways, NULL, 0, &info, &err) == IL_ERR_INVALID);
+    printf("no face that way: %s\n", err.message);
+    il_scene_release(s);
+}
+
 static bool stop_at_once(double fraction, double seconds, void *user)
 {
     (void)fraction, (void)seconds;
@@ -361,6 +458,7 @@ int main(void)
     test_furnace_and_threads();
     test_against_path_tracer();
     test_wave_matches_scalar();
+    test_surface_sensors();
     test_stop_and_bad_input();
     return check_report();
 }
