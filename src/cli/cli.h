@@ -384,6 +384,8 @@ typedef struct cli_sensor_grid {
     double cell[2];                  /* the cell size along each, metres */
 } cli_sensor_grid;
 
+/* Coordinate `axis` (0 x, 1 y, 2 z) of v. */
+float cli_axis_coord(il_vec3 v, int axis);
 /* "y=0.85" (facing +y) or "-y=2.4" (facing -y). */
 bool cli_parse_plane(const char *opt, const char *s, cli_plane *out);
 /* The plane's area within the bounds lo..hi, inset by margin: {min0, min1,

@@ -10,7 +10,7 @@
 #include "cli/cli.h"
 
 
-static float coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
+float cli_axis_coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
 
 static void set_coord(il_vec3 *v, int axis, float value)
 {
@@ -55,14 +55,18 @@ static double standard_cell(double a, double b)
     return p > 10.0 ? 10.0 : p;
 }
 
+/* The plane's two other axes, in order (y plane: x, z). */
+static void plane_axes(const cli_plane *plane, int *a0, int *a1)
+{
+    int b = (plane->axis + 1) % 3, c = (plane->axis + 2) % 3;
+    *a0 = b < c ? b : c;
+    *a1 = b < c ? c : b;
+}
+
 int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing, cli_sensor_grid *g)
 {
-    int a0 = (plane->axis + 1) % 3, a1 = (plane->axis + 2) % 3; /* y: z and x */
-    if (a0 > a1) {
-        int t = a0;
-        a0 = a1;
-        a1 = t;
-    }
+    int a0, a1;
+    plane_axes(plane, &a0, &a1);
     double len0 = area[2] - area[0], len1 = area[3] - area[1];
     if (!(len0 > 0.0) || !(len1 > 0.0)) {
         cli_error("the measuring area is empty (%g by %g); give --area or a smaller --margin",
@@ -105,16 +109,12 @@ int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing,
 
 void cli_plane_area(const cli_plane *plane, il_vec3 lo, il_vec3 hi, double margin, double area[4])
 {
-    int a0 = (plane->axis + 1) % 3, a1 = (plane->axis + 2) % 3;
-    if (a0 > a1) {
-        int t = a0;
-        a0 = a1;
-        a1 = t;
-    }
-    area[0] = coord(lo, a0) + margin;
-    area[1] = coord(lo, a1) + margin;
-    area[2] = coord(hi, a0) - margin;
-    area[3] = coord(hi, a1) - margin;
+    int a0, a1;
+    plane_axes(plane, &a0, &a1);
+    area[0] = cli_axis_coord(lo, a0) + margin;
+    area[1] = cli_axis_coord(lo, a1) + margin;
+    area[2] = cli_axis_coord(hi, a0) - margin;
+    area[3] = cli_axis_coord(hi, a1) - margin;
 }
 
 /* Up to 6 numbers of one line, separated by commas, spaces or tabs. */

@@ -268,8 +268,6 @@ static const char *lux_text(double v, char buf[32])
     return buf;
 }
 
-static float axis_coord(il_vec3 v, int axis) { return axis == 0 ? v.x : (axis == 1 ? v.y : v.z); }
-
 /* The figures of a plane's or a file's readings. */
 typedef struct summary {
     size_t lo, hi, dark;             /* the sensors of the least and most lux; how many read 0 */
@@ -336,10 +334,10 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
      * largest second coordinate down, as a plan is drawn. */
     if (g->cols && g->cols <= 10 && g->rows <= 40) {
         printf("\nlux, %c across (%.3g .. %.3g), %c down (%.3g .. %.3g):\n", names[g->axes[0]],
-               (double)axis_coord(g->sensors[0].position, g->axes[0]),
-               (double)axis_coord(g->sensors[g->cols - 1].position, g->axes[0]), names[g->axes[1]],
-               (double)axis_coord(g->sensors[g->count - 1].position, g->axes[1]),
-               (double)axis_coord(g->sensors[0].position, g->axes[1]));
+               (double)cli_axis_coord(g->sensors[0].position, g->axes[0]),
+               (double)cli_axis_coord(g->sensors[g->cols - 1].position, g->axes[0]), names[g->axes[1]],
+               (double)cli_axis_coord(g->sensors[g->count - 1].position, g->axes[1]),
+               (double)cli_axis_coord(g->sensors[0].position, g->axes[1]));
         for (uint32_t row = g->rows; row-- > 0;) {
             for (uint32_t c = 0; c < g->cols; c++)
                 printf("%8s", lux_text(r[(size_t)row * g->cols + c].lux, b));
