@@ -386,6 +386,9 @@ typedef struct cli_sensor_grid {
 
 /* Coordinate `axis` (0 x, 1 y, 2 z) of v. */
 float cli_axis_coord(il_vec3 v, int axis);
+/* The axis (0 x, 1 y, 2 z; -1: none) that s starts with, after an optional
+ * sign ("-y": 1, sign -1); *rest points past it. */
+int cli_signed_axis(const char *s, float *sign, const char **rest);
 /* "y=0.85" (facing +y) or "-y=2.4" (facing -y). */
 bool cli_parse_plane(const char *opt, const char *s, cli_plane *out);
 /* The plane's area within the bounds lo..hi, inset by margin: {min0, min1,

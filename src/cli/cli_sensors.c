@@ -22,19 +22,27 @@ static void set_coord(il_vec3 *v, int axis, float value)
         v->z = value;
 }
 
+int cli_signed_axis(const char *s, float *sign, const char **rest)
+{
+    *sign = *s == '-' ? -1.0f : 1.0f;
+    if (*s == '-' || *s == '+')
+        s++;
+    int axis = *s == 'x' ? 0 : (*s == 'y' ? 1 : (*s == 'z' ? 2 : -1));
+    *rest = axis < 0 ? s : s + 1;
+    return axis;
+}
+
 bool cli_parse_plane(const char *opt, const char *s, cli_plane *out)
 {
-    const char *p = s;
-    float sign = 1.0f;
-    if (*p == '-' || *p == '+')
-        sign = *p++ == '-' ? -1.0f : 1.0f;
-    int axis = *p == 'x' ? 0 : (*p == 'y' ? 1 : (*p == 'z' ? 2 : -1));
-    if (axis < 0 || p[1] != '=') {
+    float sign;
+    const char *rest;
+    int axis = cli_signed_axis(s, &sign, &rest);
+    if (axis < 0 || *rest != '=') {
         cli_error("%s: expected AXIS=VALUE such as y=0.85 (or -y=2.4 to face down), got '%s'", opt, s);
         return false;
     }
     double v = 0.0;
-    if (!cli_parse_double(opt, p + 2, -1e9, 1e9, &v))
+    if (!cli_parse_double(opt, rest + 1, -1e9, 1e9, &v))
         return false;
     out->axis = axis;
     out->sign = sign;

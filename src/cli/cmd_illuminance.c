@@ -74,12 +74,11 @@ typedef struct options {
 /* "+y", "-x", "z" or "X,Y,Z". */
 static bool parse_direction(const char *opt, const char *s, il_vec3 *out)
 {
-    const char *p = s;
-    float sign = *p == '-' ? -1.0f : 1.0f;
-    if (*p == '-' || *p == '+')
-        p++;
-    if ((*p == 'x' || *p == 'y' || *p == 'z') && p[1] == '\0') {
-        *out = (il_vec3){*p == 'x' ? sign : 0.0f, *p == 'y' ? sign : 0.0f, *p == 'z' ? sign : 0.0f};
+    float sign;
+    const char *rest;
+    int axis = cli_signed_axis(s, &sign, &rest);
+    if (axis >= 0 && *rest == '\0') {
+        *out = (il_vec3){axis == 0 ? sign : 0.0f, axis == 1 ? sign : 0.0f, axis == 2 ? sign : 0.0f};
         return true;
     }
     if (!cli_parse_vec3(opt, s, out))
