@@ -67,9 +67,8 @@ static void add_sample(block_sum *b, il_vec3 e)
     b->n++;
 }
 
-/* The work items [first, last) of a round, item it being block done +
- * it % nb of sensor it / nb: their paths traced as one wave (at most
- * il_pt_sensor_wave_max paths), each item's sums formed in sample order. */
+/* A round: nb blocks of every sensor from block `done` on, work item it
+ * being block done + it % nb of sensor it / nb. */
 typedef struct round_ctx {
     const il_scene *scene;
     const il_illuminance_desc *desc;
@@ -78,16 +77,25 @@ typedef struct round_ctx {
     uint32_t max_depth, samples, block, done, nb;
 } round_ctx;
 
+/* The sample indices [*from, *to) of work item it. */
+static void item_samples(const round_ctx *c, int64_t it, uint32_t *from, uint32_t *to)
+{
+    *from = (c->done + (uint32_t)(it % c->nb)) * c->block;
+    *to = c->samples - *from < c->block ? c->samples : *from + c->block;
+}
+
+/* The work items [first, last) of a round: their paths traced as one wave
+ * (at most il_pt_sensor_wave_max paths), each item's sums formed in sample
+ * order. */
 static void sample_items(const round_ctx *c, int64_t first, int64_t last, void *scratch,
                          block_sum *part)
 {
     il_vec3 p[WAVE_PATHS] = {{0}}, n[WAVE_PATHS] = {{0}}, e[WAVE_PATHS];
     il_sampler smp[WAVE_PATHS] = {{0}};
-    uint32_t count = 0;
+    uint32_t count = 0, from, to;
     for (int64_t it = first; it < last; it++) {
         size_t i = (size_t)(it / c->nb);
-        uint32_t from = (c->done + (uint32_t)(it % c->nb)) * c->block;
-        uint32_t to = c->samples - from < c->block ? c->samples : from + c->block;
+        item_samples(c, it, &from, &to);
         for (uint32_t k = from; k < to; k++, count++) {
             p[count] = c->sensors[i].position;
             n[count] = c->normals[i];
@@ -100,8 +108,7 @@ static void sample_items(const round_ctx *c, int64_t first, int64_t last, void *
     for (int64_t it = first; it < last; it++) {
         block_sum *b = &part[it];
         memset(b, 0, sizeof *b);
-        uint32_t from = (c->done + (uint32_t)(it % c->nb)) * c->block;
-        uint32_t to = c->samples - from < c->block ? c->samples : from + c->block;
+        item_samples(c, it, &from, &to);
         for (uint32_t k = from; k < to; k++)
             add_sample(b, e[count++]);
     }
