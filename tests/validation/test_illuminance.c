@@ -19,6 +19,7 @@
  * (il_pt_sensor_wave, what il_measure_illuminance runs) give the scalar
  * estimator's values bit for bit. */
 #include "pt_scenes.h"
+#include "methods/camera_wave.h"
 #include "scene/scene.h"
 
 static double luminance(il_vec3 e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
@@ -211,7 +212,7 @@ static void test_wave_matches_scalar(void)
     static il_vec3 p[N], n[N], wave[N];
     static il_sampler smp[N];
     void *scratch = aligned_alloc(64, (il_pt_wavefront_scratch_bytes() + 63) / 64 * 64);
-    CHECK(il_pt_sensor_wave_max() >= N);
+    CHECK(IL_PT_WAVE >= N);
     for (int type = 0; type < 2; type++) {
         for (uint32_t k = 0; k < N; k++) {
             /* 16 sensors in the box, some on the floor, facing all ways. */
@@ -221,7 +222,7 @@ static void test_wave_matches_scalar(void)
             il_sampler_start(&smp[k], type ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL, 9, i, k % 16);
         }
         uint64_t rays_wave = 0, rays_scalar = 0;
-        il_pt_sensor_wave(s, 8, scratch, p, n, smp, N, wave, &rays_wave);
+        il_pt_sensor_wave(s, 8, il_wave_wants_prefetch(s), scratch, p, n, smp, N, wave, &rays_wave);
         int same = 0;
         for (uint32_t k = 0; k < N; k++) {
             il_sampler one;

@@ -99,6 +99,10 @@ static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
     st->shadow = false;
 }
 
+/* Paths a wavefront advances together: one 16x16 tile at one sample per
+ * pixel (pt_wavefront.c), or as many sensor paths. */
+#define IL_PT_WAVE 256u
+
 /* Irradiance (W/m^2) at p on a surface facing the unit normal n, from one
  * sampled path (pt_path.c: the radiance of a white Lambertian surface there,
  * times pi).  Counts rays cast in *rays. */
@@ -107,13 +111,13 @@ il_vec3 il_pt_sensor_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_
 /* The path's start: the state, the sensor's surface and the hit standing
  * for it, which il_pt_step_at takes as the first vertex. */
 void il_pt_sensor_begin(il_pt_state *st, il_vec3 p, il_vec3 n, il_surface *surf, il_hit *hit);
-/* il_pt_sensor_irradiance for paths k < count (at most il_pt_sensor_wave_max),
- * traced together through the stream calls (pt_wavefront.c): out[k], bit for
- * bit the scalar value, from sensor (p[k], n[k]) with sampler smp[k];
- * scratch holds il_pt_wavefront_scratch_bytes() (64-byte aligned). */
-uint32_t il_pt_sensor_wave_max(void);
-void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, void *scratch, const il_vec3 *p,
-                       const il_vec3 *n, const il_sampler *smp, uint32_t count, il_vec3 *out,
-                       uint64_t *rays);
+/* il_pt_sensor_irradiance for paths k < count (at most IL_PT_WAVE), traced
+ * together through the stream calls (pt_wavefront.c): out[k], bit for bit
+ * the scalar value, from sensor (p[k], n[k]) with sampler smp[k]; scratch
+ * holds il_pt_wavefront_scratch_bytes() (64-byte aligned); prefetch is
+ * il_wave_wants_prefetch(scene), decided once by the caller. */
+void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, bool prefetch, void *scratch,
+                       const il_vec3 *p, const il_vec3 *n, const il_sampler *smp, uint32_t count,
+                       il_vec3 *out, uint64_t *rays);
 
 #endif

@@ -16,10 +16,10 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/sampler.h"
+#include "methods/camera_wave.h"
 #include "methods/pt/pt.h"
 
 #define BLOCK_SAMPLES 64u           /* most samples of one sensor in one work item */
-#define WAVE_PATHS 256u             /* most paths traced together (il_pt_sensor_wave_max) */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
 #define MAX_SAMPLES (1u << 30)      /* the Sobol sample index is 32 bits */
 
@@ -75,6 +75,7 @@ typedef struct round_ctx {
     const il_sensor *sensors;
     const il_vec3 *normals;
     uint32_t max_depth, samples, block, done, nb;
+    bool prefetch;                  /* il_wave_wants_prefetch, decided once */
 } round_ctx;
 
 /* The sample indices [*from, *to) of work item it. */
@@ -85,13 +86,13 @@ static void item_samples(const round_ctx *c, int64_t it, uint32_t *from, uint32_
 }
 
 /* The work items [first, last) of a round: their paths traced as one wave
- * (at most il_pt_sensor_wave_max paths), each item's sums formed in sample
+ * (at most IL_PT_WAVE paths), each item's sums formed in sample
  * order. */
 static void sample_items(const round_ctx *c, int64_t first, int64_t last, void *scratch,
                          block_sum *part)
 {
-    il_vec3 p[WAVE_PATHS] = {{0}}, n[WAVE_PATHS] = {{0}}, e[WAVE_PATHS];
-    il_sampler smp[WAVE_PATHS] = {{0}};
+    il_vec3 p[IL_PT_WAVE] = {{0}}, n[IL_PT_WAVE] = {{0}}, e[IL_PT_WAVE];
+    il_sampler smp[IL_PT_WAVE] = {{0}};
     uint32_t count = 0, from, to;
     for (int64_t it = first; it < last; it++) {
         size_t i = (size_t)(it / c->nb);
@@ -103,7 +104,7 @@ static void sample_items(const round_ctx *c, int64_t first, int64_t last, void *
         }
     }
     uint64_t rays = 0;
-    il_pt_sensor_wave(c->scene, c->max_depth, scratch, p, n, smp, count, e, &rays);
+    il_pt_sensor_wave(c->scene, c->max_depth, c->prefetch, scratch, p, n, smp, count, e, &rays);
     count = 0;
     for (int64_t it = first; it < last; it++) {
         block_sum *b = &part[it];
@@ -173,16 +174,18 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
     for (size_t i = 0; i < count; i++)
         normals[i] = v3_normalize(sensors[i].normal);
 
+    /* Items in waves of as many whole blocks as a wave holds. */
+    int64_t per_wave = IL_PT_WAVE / block;
+    round_ctx c = {scene, desc, sensors, normals, max_depth, samples, block, 0, 0,
+                   il_wave_wants_prefetch(scene)};
     double t0 = omp_get_wtime();
     uint32_t done = 0;                  /* blocks of every sensor added so far */
     while (done < blocks && count > 0) {
         uint32_t nb = blocks - done < round_blocks ? blocks - done : round_blocks;
         int64_t items = (int64_t)count * nb;
-        /* Items in waves of as many whole blocks as a wave holds. */
-        uint32_t wave = il_pt_sensor_wave_max() < WAVE_PATHS ? il_pt_sensor_wave_max() : WAVE_PATHS;
-        int64_t per_wave = wave / block;
         int64_t waves = (items + per_wave - 1) / per_wave;
-        round_ctx c = {scene, desc, sensors, normals, max_depth, samples, block, done, nb};
+        c.done = done;
+        c.nb = nb;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
         for (int64_t wv = 0; wv < waves; wv++) {
             int64_t last = (wv + 1) * per_wave < items ? (wv + 1) * per_wave : items;

@@ -19,9 +19,6 @@
 #include "methods/camera_wave.h"
 #include "methods/pt/pt.h"
 
-/* Paths advanced together: one 16x16 tile at one sample per pixel. */
-#define PT_WAVE 256u
-
 typedef struct pt_method {
     const il_scene *scene;
     uint32_t max_depth;
@@ -29,28 +26,28 @@ typedef struct pt_method {
     bool prefetch;         /* the triangle records outgrow the caches (il_wave_wants_prefetch) */
 } pt_method;
 
-/* One wave: up to PT_WAVE paths with their samplers and pixels, the gather
+/* One wave: up to IL_PT_WAVE paths with their samplers and pixels, the gather
  * buffers for the stream calls, and what is computed for all paths of a
  * vertex before any is shaded (surfaces, samples, cosine directions); one
  * per thread (about 140 KB), the camera pass's scratch memory.  Arrays
  * indexed by path are [j], by position in the active list [a]. */
 typedef struct pt_wave {
-    il_pt_state st[PT_WAVE];
-    il_sampler smp[PT_WAVE];
-    uint32_t px[PT_WAVE], py[PT_WAVE];
-    uint32_t active[PT_WAVE], shadowed[PT_WAVE];
-    il_ray rays[PT_WAVE];
-    il_hit hits[PT_WAVE];          /* [a] */
-    il_surface surf[PT_WAVE];      /* [a] */
-    bool occluded[PT_WAVE];
-    il_pt_drawn drawn[PT_WAVE];    /* [a], for the paths that draw samples */
-    uint32_t list[2][PT_WAVE];     /* paths drawing 3 pairs, and 4 (with the roulette) */
-    uint32_t slot[2][PT_WAVE];     /* their [a] */
-    il_vec2 u[PT_WAVE * 4];        /* il_sampler_2d_gather's output */
-    il_vec2 u_cos[PT_WAVE];        /* the BSDF pairs, warped together */
-    il_vec3 cos_dir[PT_WAVE];
-    il_diffuse_in diffuse_in[PT_WAVE];      /* the drawing paths' vertices, for */
-    il_diffuse_out *diffuse_out[PT_WAVE];   /* il_diffuse_wave */
+    il_pt_state st[IL_PT_WAVE];
+    il_sampler smp[IL_PT_WAVE];
+    uint32_t px[IL_PT_WAVE], py[IL_PT_WAVE];
+    uint32_t active[IL_PT_WAVE], shadowed[IL_PT_WAVE];
+    il_ray rays[IL_PT_WAVE];
+    il_hit hits[IL_PT_WAVE];          /* [a] */
+    il_surface surf[IL_PT_WAVE];      /* [a] */
+    bool occluded[IL_PT_WAVE];
+    il_pt_drawn drawn[IL_PT_WAVE];    /* [a], for the paths that draw samples */
+    uint32_t list[2][IL_PT_WAVE];     /* paths drawing 3 pairs, and 4 (with the roulette) */
+    uint32_t slot[2][IL_PT_WAVE];     /* their [a] */
+    il_vec2 u[IL_PT_WAVE * 4];        /* il_sampler_2d_gather's output */
+    il_vec2 u_cos[IL_PT_WAVE];        /* the BSDF pairs, warped together */
+    il_vec3 cos_dir[IL_PT_WAVE];
+    il_diffuse_in diffuse_in[IL_PT_WAVE];      /* the drawing paths' vertices, for */
+    il_diffuse_out *diffuse_out[IL_PT_WAVE];   /* il_diffuse_wave */
 } pt_wave;
 
 /* The samples of every path that draws them at this vertex (a hit below
@@ -106,20 +103,17 @@ static void wave_samples(const pt_method *pm, pt_wave *w, uint32_t num)
             w->diffuse_out[k]->nee_done = w->diffuse_out[k]->next_done = false;
 }
 
-/* Runs paths 0..n-1 of the wave to their ends.  With `first`, path j
- * starts at the vertex first[j] (a sensor: il_pt_sensor_begin), whose hit
- * w->hits[j] holds, instead of tracing its ray. */
-static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n, const il_surface *first)
+/* Runs paths 0..n-1 of the wave to their ends.  With `at_sensors`, path j
+ * starts at the vertex w->surf[j] with hit w->hits[j] (a sensor:
+ * il_pt_sensor_begin) instead of tracing its ray. */
+static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n, bool at_sensors)
 {
     const il_tracer *tr = pm->scene->tracer;
     uint32_t num_active = n;
     for (uint32_t j = 0; j < n; j++)
         w->active[j] = j;
     for (bool camera = true; num_active > 0; camera = false) {
-        if (camera && first) {
-            for (uint32_t j = 0; j < n; j++)
-                w->surf[j] = first[j];
-        } else {
+        if (!(camera && at_sensors)) { /* a sensor path's first vertex is set */
             for (uint32_t a = 0; a < num_active; a++)
                 w->rays[a] = w->st[w->active[a]].ray;
             if (camera) /* a tile's camera rays: neighbours, alike */
@@ -164,13 +158,13 @@ static void render_tile(const void *method, const il_camera_pass_ctx *ctx, il_ca
     pt_wave *w = tile->scratch;
     il_camera_wave_cursor cur = il_camera_wave_begin(tile);
     for (;;) {
-        uint32_t n = il_camera_wave_fill(ctx, tile, &cur, PT_WAVE, w->smp, w->px, w->py, w->list[0],
+        uint32_t n = il_camera_wave_fill(ctx, tile, &cur, IL_PT_WAVE, w->smp, w->px, w->py, w->list[0],
                                          w->u, w->cos_dir);
         if (n == 0)
             break;
         for (uint32_t j = 0; j < n; j++)
             il_pt_begin(&w->st[j], ctx->cam.position, w->cos_dir[j]);
-        run_wave(pm, w, n, NULL);
+        run_wave(pm, w, n, false);
         for (uint32_t j = 0; j < n; j++) {
             tile->rays += w->st[j].rays;
             il_camera_tile_add(ctx, tile, w->px[j], w->py[j], w->st[j].L);
@@ -199,21 +193,17 @@ void il_pt_wavefront_tile(const il_scene *scene, uint32_t max_depth, il_pt_strat
     render_tile(&pm, ctx, tile);
 }
 
-uint32_t il_pt_sensor_wave_max(void) { return PT_WAVE; }
-
-void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, void *scratch, const il_vec3 *p,
-                       const il_vec3 *n, const il_sampler *smp, uint32_t count, il_vec3 *out,
-                       uint64_t *rays)
+void il_pt_sensor_wave(const il_scene *scene, uint32_t max_depth, bool prefetch, void *scratch,
+                       const il_vec3 *p, const il_vec3 *n, const il_sampler *smp, uint32_t count,
+                       il_vec3 *out, uint64_t *rays)
 {
-    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = IL_PT_MIS,
-                    .prefetch = il_wave_wants_prefetch(scene)};
+    pt_method pm = {.scene = scene, .max_depth = max_depth, .strategy = IL_PT_MIS, .prefetch = prefetch};
     pt_wave *w = scratch;
-    il_surface first[PT_WAVE];
     for (uint32_t j = 0; j < count; j++) {
-        il_pt_sensor_begin(&w->st[j], p[j], n[j], &first[j], &w->hits[j]);
+        il_pt_sensor_begin(&w->st[j], p[j], n[j], &w->surf[j], &w->hits[j]);
         w->smp[j] = smp[j];
     }
-    run_wave(&pm, w, count, first);
+    run_wave(&pm, w, count, true);
     for (uint32_t j = 0; j < count; j++) {
         *rays += w->st[j].rays;
         out[j] = v3_scale(w->st[j].L, IL_PI);
