@@ -30,6 +30,10 @@ bool cli_parse_u64(const char *opt, const char *s, uint64_t *out);
 bool cli_parse_count(const char *opt, const char *s, uint64_t *out);
 bool cli_parse_double(const char *opt, const char *s, double min, double max, double *out);
 bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out);
+/* n finite numbers separated by commas into out; the message says "expected FORM". */
+bool cli_parse_numbers(const char *opt, const char *s, int n, const char *form, double *out);
+/* "sobol" or "pcg" (--sampler). */
+bool cli_parse_sampler(const char *opt, const char *s, il_sampler_type *out);
 bool cli_parse_on_off(const char *opt, const char *s, bool *out); /* "on" or "off" */
 
 /* Argument cursor: fetches the value after option argv[*i], or reports a usage error. */

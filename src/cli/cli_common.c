@@ -88,23 +88,39 @@ bool cli_parse_on_off(const char *opt, const char *s, bool *out)
     return false;
 }
 
-bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out)
+bool cli_parse_numbers(const char *opt, const char *s, int n, const char *form, double *out)
 {
-    float v[3];
     const char *p = s;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < n; k++) {
         char *end = NULL;
         errno = 0;
-        double d = strtod(p, &end);
-        if (errno || end == p || !isfinite(d) || (k < 2 && *end != ',') || (k == 2 && *end != '\0')) {
-            cli_error("%s: expected three numbers X,Y,Z, got '%s'", opt, s);
+        out[k] = strtod(p, &end);
+        if (errno || end == p || !isfinite(out[k]) || *end != (k < n - 1 ? ',' : '\0')) {
+            cli_error("%s: expected %s, got '%s'", opt, form, s);
             return false;
         }
-        v[k] = (float)d;
         p = end + 1;
     }
-    *out = (il_vec3){v[0], v[1], v[2]};
     return true;
+}
+
+bool cli_parse_vec3(const char *opt, const char *s, il_vec3 *out)
+{
+    double v[3];
+    if (!cli_parse_numbers(opt, s, 3, "three numbers X,Y,Z", v))
+        return false;
+    *out = (il_vec3){(float)v[0], (float)v[1], (float)v[2]};
+    return true;
+}
+
+bool cli_parse_sampler(const char *opt, const char *s, il_sampler_type *out)
+{
+    if (!strcmp(s, "sobol") || !strcmp(s, "pcg")) {
+        *out = !strcmp(s, "pcg") ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL;
+        return true;
+    }
+    cli_error("%s: expected sobol or pcg, got '%s'", opt, s);
+    return false;
 }
 
 const char *cli_value(int argc, char **argv, int *i)

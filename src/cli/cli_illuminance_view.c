@@ -40,37 +40,27 @@ int cli_view_sensors(const il_scene *scene, uint32_t width, uint32_t height, cli
     return IL_EXIT_OK;
 }
 
-/* An image of the lux, the same value in every channel. */
-static int write_lux(const char *path, const float *lux, uint32_t w, uint32_t h)
+/* One output of the view: a .png in false colour, else the lux in every
+ * channel (EXR in full float). */
+static int write_view(const char *path, const float *lux, const bool *seen, uint32_t w, uint32_t h,
+                      double scale_max)
 {
-    il_image img = {w, h, malloc((size_t)w * h * 3 * sizeof(float))};
+    const char *dot = strrchr(path, '.');
+    il_image img = {0};
+    if (dot && !strcasecmp(dot, ".png")) {
+        (void)cli_falsecolor(lux, seen, w, h, scale_max, &img); /* rgb NULL when out of memory */
+    } else if ((img.rgb = malloc((size_t)w * h * 3 * sizeof(float)))) {
+        img.width = w, img.height = h;
+        for (size_t i = 0; i < (size_t)w * h; i++)
+            img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = lux[i];
+    }
     if (!img.rgb) {
         cli_error("%s: out of memory", path);
         return IL_EXIT_RUNTIME;
     }
-    for (size_t i = 0; i < (size_t)w * h; i++)
-        img.rgb[3 * i] = img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = lux[i];
     il_write_desc wd = {.exr_precision = IL_EXR_FLOAT};
     il_error err = {0};
     il_status st = il_image_write(&img, path, &wd, &err);
-    il_image_free(&img);
-    if (st != IL_OK) {
-        cli_error("%s", err.message);
-        return cli_exit_for(st);
-    }
-    return IL_EXIT_OK;
-}
-
-static int write_falsecolor(const char *path, const float *lux, const bool *seen, uint32_t w,
-                            uint32_t h, double scale_max)
-{
-    il_image img = {0};
-    if (!cli_falsecolor(lux, seen, w, h, scale_max, &img)) {
-        cli_error("%s: out of memory", path);
-        return IL_EXIT_RUNTIME;
-    }
-    il_error err = {0};
-    il_status st = il_image_write(&img, path, NULL, &err);
     il_image_free(&img);
     if (st != IL_OK) {
         cli_error("%s", err.message);
@@ -112,11 +102,8 @@ int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_ill
     }
     printf("palette     0 .. %g lx\n", top);
     int rc = IL_EXIT_OK;
-    for (int k = 0; rc == IL_EXIT_OK && k < num_outputs; k++) {
-        const char *dot = strrchr(outputs[k], '.');
-        rc = dot && !strcasecmp(dot, ".png") ? write_falsecolor(outputs[k], lux, seen, w, h, top)
-                                             : write_lux(outputs[k], lux, w, h);
-    }
+    for (int k = 0; rc == IL_EXIT_OK && k < num_outputs; k++)
+        rc = write_view(outputs[k], lux, seen, w, h, top);
     free(lux), free(seen);
     return rc;
 }

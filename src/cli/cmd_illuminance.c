@@ -92,22 +92,27 @@ static bool parse_direction(const char *opt, const char *s, il_vec3 *out)
 
 static int parse_area(const char *opt, const char *s, double area[4])
 {
-    char *end;
-    const char *p = s;
-    for (int k = 0; k < 4; k++) {
-        area[k] = strtod(p, &end);
-        if (end == p || !isfinite(area[k]) || (k < 3 ? *end != ',' : *end != '\0')) {
-            cli_error("%s: expected four numbers A0,B0,A1,B1, got '%s'", opt, s);
-            return IL_EXIT_BAD_INPUT;
-        }
-        p = end + 1;
-    }
+    if (!cli_parse_numbers(opt, s, 4, "four numbers A0,B0,A1,B1", area))
+        return IL_EXIT_BAD_INPUT;
     if (!(area[2] > area[0] && area[3] > area[1])) {
         cli_error("%s: the second corner must be beyond the first in both coordinates, got '%s'",
                   opt, s);
         return IL_EXIT_BAD_INPUT;
     }
     return IL_EXIT_OK;
+}
+
+/* The options of this command (not the shared ones) that take a value. */
+static bool takes_value(const char *a)
+{
+    static const char *const names[] = {"--plane", "--area", "--margin", "--spacing", "--points",
+                                        "--surface", "--facing", "--width", "--height",
+                                        "--scale-max", "--samples", "--max-depth", "--sampler",
+                                        "--stats", "-o", "--output"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (!strcmp(a, names[k]))
+            return true;
+    return false;
 }
 
 static int parse_options(int argc, char **argv, options *o)
@@ -131,14 +136,7 @@ static int parse_options(int argc, char **argv, options *o)
             o->view = true;
             continue;
         }
-        bool takes_value = !strcmp(a, "--width") || !strcmp(a, "--height") ||
-                           !strcmp(a, "--scale-max") || !strcmp(a, "--plane") || !strcmp(a, "--area") || !strcmp(a, "--margin") ||
-                           !strcmp(a, "--spacing") || !strcmp(a, "--points") ||
-                           !strcmp(a, "--samples") || !strcmp(a, "--max-depth") ||
-                           !strcmp(a, "--sampler") || !strcmp(a, "-o") || !strcmp(a, "--output") ||
-                           !strcmp(a, "--stats") || !strcmp(a, "--surface") ||
-                           !strcmp(a, "--facing");
-        if (!takes_value) {
+        if (!takes_value(a)) {
             rc = cli_scene_argument("illuminance", a, &o->scene);
             if (rc != IL_EXIT_OK)
                 return rc;
@@ -175,12 +173,7 @@ static int parse_options(int argc, char **argv, options *o)
         } else if (!strcmp(a, "--max-depth")) {
             ok = cli_parse_u32(a, v, 1, 1024, &o->desc.max_depth);
         } else if (!strcmp(a, "--sampler")) {
-            if (!strcmp(v, "sobol") || !strcmp(v, "pcg")) {
-                o->desc.sampler = !strcmp(v, "pcg") ? IL_SAMPLER_PCG : IL_SAMPLER_SOBOL;
-            } else {
-                cli_error("--sampler: expected sobol or pcg, got '%s'", v);
-                ok = false;
-            }
+            ok = cli_parse_sampler(a, v, &o->desc.sampler);
         } else if (o->num_outputs == MAX_OUTPUTS) {
             cli_error("illuminance: at most %d outputs", MAX_OUTPUTS);
             return IL_EXIT_USAGE;

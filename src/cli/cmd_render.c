@@ -244,14 +244,8 @@ static int parse_options(int argc, char **argv, render_options *o)
             }
         } else if (!strcmp(a, "--sampler")) {
             VALUE();
-            if (!strcmp(v, "sobol"))
-                o->desc.sampler = IL_SAMPLER_SOBOL;
-            else if (!strcmp(v, "pcg"))
-                o->desc.sampler = IL_SAMPLER_PCG;
-            else {
-                cli_error("--sampler: expected sobol or pcg, got '%s'", v);
+            if (!cli_parse_sampler(a, v, &o->desc.sampler))
                 return IL_EXIT_BAD_INPUT;
-            }
         } else if (!strcmp(a, "--filter")) {
             VALUE();
             if (!strcmp(v, "box"))
