@@ -50,15 +50,17 @@ static inline void add_floor(il_scene *s, float y, float h, uint32_t mat)
     add_quad(s, v3(0, y, 0), v3(0, 0, h), v3(h, 0, 0), mat);
 }
 
-/* The six faces of the cube [-1,1]^3, facing inwards: a closed box. */
-static inline void add_inward_cube(il_scene *s, uint32_t m)
+/* The six faces of the cube [-1,1]^3, facing inwards (a closed box) or
+ * outwards (a solid block): the same quads, their half-extents swapped. */
+static inline void add_cube(il_scene *s, uint32_t m, bool inward)
 {
-    add_quad(s, v3(0, -1, 0), v3(0, 0, 1), v3(1, 0, 0), m);
-    add_quad(s, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(-1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), m);
-    add_quad(s, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, -1), v3(1, 0, 0), v3(0, 1, 0), m);
-    add_quad(s, v3(0, 0, 1), v3(0, 1, 0), v3(1, 0, 0), m);
+    static const il_vec3 faces[6][3] = {
+        {{0, -1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}},
+        {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+        {{0, 0, -1}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}},
+    };
+    for (int f = 0; f < 6; f++)
+        add_quad(s, faces[f][0], faces[f][inward ? 1 : 2], faces[f][inward ? 2 : 1], m);
 }
 
 /* A ball of radius r centred at c: il_shape_sphere's UV sphere of 96

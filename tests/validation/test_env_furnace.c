@@ -58,13 +58,7 @@ static il_scene *scene(object obj, float rho, const il_image *map, il_env_mappin
          * degree view (28 on the diagonal) sees nothing else. */
         set_camera(s, v3(1.2f, 1.5f, 2.4f), v3(0, 0, 0), v3(0, 1, 0), 20.0f);
     } else {
-        /* The cube [-1,1]^3, faces outwards (front = cross(ex, ey)). */
-        add_quad(s, v3(0, -1, 0), v3(1, 0, 0), v3(0, 0, 1), mat);
-        add_quad(s, v3(0, 1, 0), v3(0, 0, 1), v3(1, 0, 0), mat);
-        add_quad(s, v3(-1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), mat);
-        add_quad(s, v3(1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), mat);
-        add_quad(s, v3(0, 0, -1), v3(0, 1, 0), v3(1, 0, 0), mat);
-        add_quad(s, v3(0, 0, 1), v3(1, 0, 0), v3(0, 1, 0), mat);
+        add_cube(s, mat, false); /* [-1,1]^3, faces outwards */
         if (obj == CUBE)   /* 0.5 in front of the +z face, looking at it */
             set_camera(s, v3(0.1f, 0.2f, 1.5f), v3(0.1f, 0.2f, 0.0f), v3(0, 1, 0), 60.0f);
         else               /* looking away from the cube, up into the sky */

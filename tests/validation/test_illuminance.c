@@ -138,7 +138,7 @@ static il_scene *furnace_box(il_vec3 e, float rho)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho), .emission = e});
-    add_inward_cube(s, m);
+    add_cube(s, m, true);
     commit(s);
     return s;
 }

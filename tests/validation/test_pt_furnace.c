@@ -9,7 +9,7 @@ static il_scene *furnace_box(il_vec3 e, float rho)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho), .emission = e});
-    add_inward_cube(s, m);
+    add_cube(s, m, true);
     set_camera(s, v3(0.1f, 0.2f, 0.3f), v3(1, -0.5f, -1), v3(0, 1, 0), 70.0f);
     CHECK_OK(il_scene_commit(s, &g_err), &g_err);
     return s;

@@ -81,7 +81,7 @@ static void test_box(il_light_desc l, uint32_t maps, double phi)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = {0.6f, 0.6f, 0.6f}});
-    add_inward_cube(s, m);
+    add_cube(s, m, true);
     CHECK_OK(il_scene_add_light(s, &l, &g_err), &g_err);
     commit(s);
     il_rsm r;
@@ -200,7 +200,7 @@ static void test_map_choice(void)
 {
     il_scene *s = new_scene();
     uint32_t m = add_material(s, (il_material_desc){.diffuse = {0.6f, 0.6f, 0.6f}});
-    add_inward_cube(s, m);
+    add_cube(s, m, true);
     il_light_desc a = {.type = IL_LIGHT_POINT, .position = v3(-0.5f, 0.5f, 0.2f),
                        .intensity = v3(2, 2, 2)};
     il_light_desc b = {.type = IL_LIGHT_POINT, .position = v3(0.6f, -0.3f, -0.4f),
