@@ -297,20 +297,73 @@ typedef struct il_write_desc {
 il_status il_envmap_convert(const il_image *src, il_env_mapping from, il_env_mapping to,
                             uint32_t width, il_image *dst, il_error *err);
 
-/* The CIE standard overcast sky (Moon & Spencer 1942; CIE S 011/E:2003,
- * sky type 1) as a lat-long environment map of width x width/2 texels
- * (docs/environment.md): L(a) = Lz (1 + 2 sin a) / 3 at altitude a, white,
- * with Lz set so that an unobstructed horizontal surface receives
- * horizontal_lux from the sky (E = 7 pi Lz / 9; 683 lm/W), and below the
- * horizon a diffuse ground of that albedo lit by it (L = albedo E / pi).
- * For daylight-factor studies (docs/illuminance.md). */
+/* Skies for daylight studies (docs/environment.md#skies), as lat-long
+ * environment maps of width x width/2 texels, white, 683 lm/W:
+ *
+ * il_sky_overcast: the CIE standard overcast sky (Moon & Spencer 1942, CIE
+ * 1955; the separate formula beside the general sky in CIE S 011/E:2003):
+ * L(a) = Lz (1 + 2 sin a) / 3 at altitude a, with Lz set so that an
+ * unobstructed horizontal surface receives horizontal_lux from the sky
+ * (E = 7 pi Lz / 9).  For daylight-factor studies (docs/illuminance.md).
+ *
+ * il_sky_cie: the CIE standard general sky (CIE S 011/E:2003, ISO
+ * 15469:2004), sky types 1 (overcast) to 15 (cloudless, turbid), for the
+ * sun at (sun_altitude, sun_azimuth); each texel the mean of the standard's
+ * relative luminance over its solid angle, scaled so that an unobstructed
+ * horizontal surface receives horizontal_lux from the sky alone.  The sun's
+ * own disc is not in the map: il_scene_set_daylight adds it as a
+ * directional light.
+ *
+ * Below the horizon both have a diffuse ground of ground_albedo lit by the
+ * sky and the sun: L = albedo (horizontal_lux + sun_normal_lux sin(sun
+ * altitude)) / (683 pi), like the ground glow of Radiance's gensky.
+ *
+ * Directions in the scene: +y is up; north is -z and east +x, turned by
+ * `north` degrees counter-clockwise seen from above (north = 90: north is
+ * -x).  Azimuths are degrees clockwise from north seen from above (east
+ * 90, south 180). */
 typedef struct il_sky_desc {
-    double horizontal_lux;   /* 0 means 10,000 lx */
+    double horizontal_lux;   /* from the sky alone; 0 means 10,000 lx */
     double ground_albedo;    /* 0 to 1; negative means none (black ground); 0 means 0.2 */
     uint32_t width;          /* 0 means 256 (the sky is smooth: more texels only cost
-                                cache misses when it is sampled) */
+                                cache misses when it is sampled); il_sky_cie needs a
+                                multiple of 4 */
+    int cie_type;            /* il_sky_cie: 1 to 15 (0 is the overcast sky above,
+                                for il_scene_set_daylight) */
+    double sun_altitude;     /* degrees above the horizon, more than 0 and at most 90 */
+    double sun_azimuth;      /* degrees clockwise from north */
+    double north;            /* degrees; see above */
+    double sun_normal_lux;   /* the sun's illuminance on a surface facing it (0: no
+                                direct sun); il_sun_normal_lux gives a model's value */
 } il_sky_desc;
 il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err);
+il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
+
+/* Sets the sky of desc (cie_type 0: the overcast sky; 1-15: il_sky_cie) as
+ * the scene's environment and, when sun_normal_lux > 0, adds the sun as a
+ * directional light of that illuminance (W/m^2 = lux / 683) shining from
+ * (sun_altitude, sun_azimuth).  The overcast sky has no sun: a
+ * sun_normal_lux there is refused.  Before commit. */
+il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_error *err);
+
+/* Where the sun stands, seen from latitude and longitude (degrees, north and
+ * east positive) at a moment given in seconds since 1970-01-01T00:00:00 UTC:
+ * altitude in degrees above the horizon (refracted by a standard
+ * atmosphere while above -1 degree), azimuth in degrees clockwise from
+ * north.  The Astronomical Almanac's low-precision solar coordinates
+ * (Michalsky 1988): about 0.01 degree from 1950 to 2050.  Moments outside
+ * the years 1900-2100 are refused. */
+il_status il_sun_position(double latitude, double longitude, double unix_seconds,
+                          double *altitude, double *azimuth, il_error *err);
+
+/* The direct normal illuminance of the sun for a CIE sky type at a solar
+ * altitude (degrees), after the IES daylight-availability model (IES RP-21,
+ * IES Lighting Handbook): E = 127,500 lx (1 + 0.034 cos(2 pi (J - 2) /
+ * 365)) exp(-c / sin(altitude)), c = 0.21 for the clear types 11-15, 0.80
+ * for the partly cloudy types 6-10; 0 for the overcast types 1-5 (and
+ * type 0) and for a sun on or below the horizon.  day_of_year J is 1-366;
+ * 0 leaves out the seasonal term. */
+double il_sun_normal_lux(int cie_type, double sun_altitude, int day_of_year);
 
 /* Reads PNG, JPEG (8-bit sRGB, decoded to linear), HDR (RGBE), EXR and PFM. */
 il_status il_image_read(const char *path, il_image *out, il_error *err);

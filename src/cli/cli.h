@@ -274,10 +274,21 @@ typedef struct cli_env_options {
     double intensity;                /* 0: 1 */
     double rotation;                 /* degrees */
     const char *first_setting;       /* the first --env-* option given, for messages */
-    bool sky;                        /* --sky overcast: the CIE overcast sky instead of a file */
+    bool sky;                        /* --sky: a sky for daylight instead of a file */
     bool sky_only;                   /* --sky-only: the scene's own lights switched off */
-    il_sky_desc sky_desc;            /* --sky-lux, --ground-albedo */
+    il_sky_desc sky_desc;            /* --sky's type (cie_type 0: overcast), --sky-lux,
+                                        --ground-albedo, --north, --sun ALT,AZ */
     const char *first_sky_setting;   /* the first of those given, for messages */
+    const char *first_sun_setting;   /* the first --sun* option, --north, --latitude or
+                                        --longitude given, for messages */
+    bool has_sun;                    /* --sun ALT,AZ */
+    const char *sun_time;            /* --sun-time, as given */
+    double sun_seconds;              /* ... in seconds since 1970-01-01T00:00Z */
+    int sun_day_of_year;             /* ... the local date's day of the year */
+    double latitude, longitude;      /* --latitude, --longitude */
+    bool has_latitude, has_longitude;
+    double sun_lux;                  /* --sun-lux; has_sun_lux false: the IES model's */
+    bool has_sun_lux;
 } cli_env_options;
 
 extern const char cli_env_help[];
@@ -290,6 +301,21 @@ int cli_env_check(const char *command, const cli_env_options *o);
  * (before commit); prints the error (a missing, corrupt or misshapen map)
  * and returns its exit status.  Does nothing when o is NULL or has neither. */
 int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
+
+/* The sun of a CIE sky (cli_sun.c, docs/environment.md#skies). */
+/* --sun, --sun-time, --latitude, --longitude, --north, --sun-lux, as
+ * cli_env_option does for the rest. */
+bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc);
+/* Usage errors among those: IL_EXIT_OK or IL_EXIT_USAGE (message printed). */
+int cli_sun_check(const char *command, const cli_env_options *o);
+/* Fills desc's sun (its position from --sun or from the moment and place,
+ * its illuminance from --sun-lux or the model) for a CIE sky and prints
+ * it unless quiet; a sun below the horizon is an error (exit 1). */
+int cli_sun_resolve(const cli_env_options *o, il_sky_desc *desc, bool quiet);
+/* Parses an ISO 8601 moment with its UTC offset (2026-06-21T14:30+02:00,
+ * ...Z, seconds optional): seconds since 1970-01-01T00:00Z and the local
+ * date's day of the year (1-366).  Prints the error and returns false. */
+bool cli_parse_moment(const char *opt, const char *s, double *unix_seconds, int *day_of_year);
 /* cli_load_scene with the environment map of `env` (may be NULL) set
  * between loading and committing. */
 int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);

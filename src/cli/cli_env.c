@@ -1,9 +1,11 @@
 /* The environment-map options shared by render, bake, view and illuminance
  * (docs/environment.md): --env FILE, --env-mapping, --env-intensity,
- * --env-rotate, or --sky overcast with --sky-lux and --ground-albedo.  The
+ * --env-rotate, or --sky overcast|clear|cie:N with --sky-lux,
+ * --ground-albedo and the sun's options (cli_sun.c).  The
  * map is set on the scene after loading and before commit
  * (cli_load_scene_env). */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
@@ -20,10 +22,24 @@ const char cli_env_help[] =
     "  --env-intensity K      multiply the map's radiance by K (default 1)\n"
     "  --env-rotate DEGREES   turn the map about +y, counter-clockwise seen from\n"
     "                         above (default 0)\n"
-    "  --sky overcast         the CIE standard overcast sky instead of a map: an\n"
-    "                         unobstructed horizontal surface gets --sky-lux E from\n"
-    "                         it (default 10000 lx); below the horizon a ground of\n"
-    "                         --ground-albedo R (default 0.2) lit by it\n"
+    "  --sky overcast|clear|cie:N\n"
+    "                         a sky for daylight studies instead of a map: the CIE\n"
+    "                         standard overcast sky, or the CIE general sky type N\n"
+    "                         (1 overcast ... 15 cloudless; clear is type 12) with\n"
+    "                         its sun; an unobstructed horizontal surface gets\n"
+    "                         --sky-lux E from the sky (default 10000 lx); below\n"
+    "                         the horizon a ground of --ground-albedo R (default\n"
+    "                         0.2) lit by sky and sun\n"
+    "  --sun ALT,AZ           the sun of a CIE sky: altitude and azimuth in degrees\n"
+    "                         (azimuth clockwise from north: east 90, south 180)\n"
+    "  --sun-time T --latitude DEG --longitude DEG\n"
+    "                         ... or where it stands at moment T (with its UTC\n"
+    "                         offset: 2026-06-21T14:30+02:00) seen from that place\n"
+    "                         (north and east positive)\n"
+    "  --north DEG            north in the scene: -z turned DEG counter-clockwise\n"
+    "                         seen from above (default 0: north -z, east +x)\n"
+    "  --sun-lux E            the sun's illuminance facing it (default: the IES\n"
+    "                         model for the sky type and altitude; 0: no sun)\n"
     "  --sky-only             light the scene by the sky (--env or --sky) alone: its\n"
     "                         own lights and emitters are switched off\n";
 
@@ -35,7 +51,12 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         *rc = IL_EXIT_OK;
         return true;
     }
-    if (strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
+    static const char *const sun_options[] = {"--sun", "--sun-time", "--latitude", "--longitude",
+                                              "--north", "--sun-lux"};
+    bool sun = false;
+    for (size_t k = 0; k < sizeof sun_options / sizeof sun_options[0]; k++)
+        sun = sun || !strcmp(a, sun_options[k]);
+    if (!sun && strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
         strcmp(a, "--env-rotate") && strcmp(a, "--sky") && strcmp(a, "--sky-lux") &&
         strcmp(a, "--ground-albedo"))
         return false;
@@ -45,13 +66,23 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         *rc = IL_EXIT_USAGE;
         return true;
     }
+    if (sun)
+        return cli_sun_option(a, v, o, rc);
     if (!strcmp(a, "--env")) {
         o->file = v;
         return true;
     }
     if (!strcmp(a, "--sky")) {
-        if (strcmp(v, "overcast")) {
-            cli_error("--sky: expected overcast, got '%s'", v);
+        char *end = NULL;
+        long type = !strncmp(v, "cie:", 4) ? strtol(v + 4, &end, 10) : -1;
+        if (!strcmp(v, "overcast")) {
+            o->sky_desc.cie_type = 0;
+        } else if (!strcmp(v, "clear")) {
+            o->sky_desc.cie_type = 12;
+        } else if (end && end != v + 4 && !*end && type >= 1 && type <= 15) {
+            o->sky_desc.cie_type = (int)type;
+        } else {
+            cli_error("--sky: expected overcast, clear or cie:1 to cie:15, got '%s'", v);
             *rc = IL_EXIT_BAD_INPUT;
         }
         o->sky = true;
@@ -101,19 +132,18 @@ int cli_env_check(const char *command, const cli_env_options *o)
         return IL_EXIT_USAGE;
     }
     if (o->first_sky_setting && !o->sky) {
-        cli_error("%s: %s needs --sky overcast (see 'illum %s --help')", command,
-                  o->first_sky_setting, command);
+        cli_error("%s: %s needs --sky (see 'illum %s --help')", command, o->first_sky_setting, command);
         return IL_EXIT_USAGE;
     }
     if (o->sky_only && !o->sky && !o->file) {
-        cli_error("%s: --sky-only needs --sky overcast or --env FILE", command);
+        cli_error("%s: --sky-only needs --sky or --env FILE", command);
         return IL_EXIT_USAGE;
     }
     if (o->sky && o->file) {
         cli_error("%s: --env and --sky both set the sky; give one", command);
         return IL_EXIT_USAGE;
     }
-    return IL_EXIT_OK;
+    return cli_sun_check(command, o);
 }
 
 int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
@@ -127,14 +157,13 @@ int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
         return cli_exit_for(err.status);
     }
     if (o->sky) {
-        il_status st = il_sky_overcast(&o->sky_desc, &img, &err);
-        il_environment_desc d = {.map = &img, .mapping = IL_ENV_LATLONG};
-        if (st == IL_OK)
-            st = il_scene_set_environment(scene, &d, &err);
-        il_image_free(&img);
-        if (st != IL_OK) {
+        il_sky_desc sky = o->sky_desc;
+        int rc = cli_sun_resolve(o, &sky, quiet);
+        if (rc != IL_EXIT_OK)
+            return rc;
+        if (il_scene_set_daylight(scene, &sky, &err) != IL_OK) {
             cli_error("--sky: %s", err.message);
-            return cli_exit_for(st);
+            return cli_exit_for(err.status);
         }
         return IL_EXIT_OK;
     }

@@ -280,7 +280,7 @@ static summary summarize(const options *o, const cli_sensor_grid *g, const il_il
             m.worst_rel = fmax(m.worst_rel, r[i].lux_error / r[i].lux);
     }
     m.average = sum / (double)g->count;
-    if (o->env.sky && o->env.sky_only)
+    if (o->env.sky && o->env.sky_desc.cie_type == 0 && o->env.sky_only)
         m.outdoor = o->env.sky_desc.horizontal_lux > 0.0 ? o->env.sky_desc.horizontal_lux : 10000.0;
     return m;
 }
@@ -311,7 +311,7 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
     if (avg > 0.0)
         printf("uniformity  %.3f (minimum / average), %.3f (minimum / maximum)\n",
                (double)r[lo].lux / avg, r[hi].lux > 0.0f ? (double)r[lo].lux / r[hi].lux : 0.0);
-    if (o->env.sky && !o->env.sky_only)
+    if (o->env.sky && o->env.sky_desc.cie_type == 0 && !o->env.sky_only)
         printf("daylight    the scene's own lights count too: --sky-only gives the daylight factor\n");
     if (m->outdoor > 0.0) {
         /* The daylight factor: indoor over unobstructed outdoor horizontal

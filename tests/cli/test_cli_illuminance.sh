@@ -147,6 +147,52 @@ expect_exit 2 "sky lux without the sky" -- "$ILLUM" illuminance lamp.json --sky-
 expect_exit 2 "sky and env" -- "$ILLUM" illuminance lamp.json --sky overcast --env x.hdr --plane y=0 -o bad.csv
 expect_exit 2 "sky only without a sky" -- "$ILLUM" render lamp.json --sky-only -o bad.png
 
+# The clear sky and its sun (--sky clear, CIE type 12): the open floor gets
+# the sky's horizontal illuminance plus the sun's E sin(altitude), 10,000 +
+# 20,000 sin 30 = 20,000 lx, and no daylight factor (that needs the overcast
+# sky).  From a moment and a place the sun stands where NREL's SPA example
+# puts it (2003-10-17 12:30:30 at UTC-7, Golden, Colorado: altitude 39.89,
+# azimuth 194.34), the direct light after the IES model.
+expect_exit 0 "clear sky, --sun" -- "$ILLUM" illuminance lamp.json --sky clear --sun 30,180 --sun-lux 20000 \
+    --sky-only --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 4096 -o clear.csv
+expect_stderr "CIE sky type 12, sun at 30.00 degrees altitude, 180.00 azimuth; sky 10000 lx horizontal, sun 20000 lx normal" \
+    "clear sky: the sun"
+checks=$((checks + 1))
+awk -F, 'NR == 2 { d = $7 - 20000; exit !(d < 200 && d > -200) }' clear.csv ||
+    fail "clear.csv: $(sed -n 2p clear.csv), expected 20000 lx within 1%"
+checks=$((checks + 1))
+grep -q "daylight" out.txt && fail "clear sky: a daylight factor"
+expect_exit 0 "clear sky, --sun-time" -- "$ILLUM" illuminance lamp.json --sky cie:12 \
+    --sun-time 2003-10-17T12:30:30-07:00 --latitude 39.742476 --longitude -105.1786 --north 30 \
+    --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 16
+expect_stderr "sun at 39.89 degrees altitude, 194.34 azimuth" "SPA's example"
+expect_exit 0 "render under a clear sky" -- "$ILLUM" render lamp.json --sky cie:7 --sun 45,90 --width 8 \
+    --height 8 --spp 2 -q -o clear.pfm
+expect_file clear.pfm "render under a clear sky"
+expect_exit 1 "CIE type 16" -- "$ILLUM" illuminance lamp.json --sky cie:16 --sun 30,180 --plane y=0 -o bad.csv
+expect_exit 1 "CIE type x" -- "$ILLUM" illuminance lamp.json --sky cie:x --sun 30,180 --plane y=0 -o bad.csv
+expect_exit 1 "sun below the horizon" -- "$ILLUM" illuminance lamp.json --sky clear --plane y=0 -o bad.csv \
+    --sun-time 2026-12-21T20:00+01:00 --latitude 52.52 --longitude 13.40
+expect_stderr "below the horizon" "night"
+expect_exit 1 "sun altitude -5" -- "$ILLUM" illuminance lamp.json --sky clear --sun -5,180 --plane y=0 -o bad.csv
+expect_exit 1 "no UTC offset" -- "$ILLUM" illuminance lamp.json --sky clear --sun-time 2026-06-21T13:00 \
+    --latitude 52 --longitude 13 --plane y=0 -o bad.csv
+expect_stderr "UTC offset" "no UTC offset"
+expect_exit 1 "30 February" -- "$ILLUM" illuminance lamp.json --sky clear --sun-time 2026-02-30T13:00Z \
+    --latitude 52 --longitude 13 --plane y=0 -o bad.csv
+expect_exit 1 "latitude 91" -- "$ILLUM" illuminance lamp.json --sky clear --sun-time 2026-06-21T13:00Z \
+    --latitude 91 --longitude 13 --plane y=0 -o bad.csv
+expect_exit 1 "negative sun lux" -- "$ILLUM" illuminance lamp.json --sky clear --sun 30,180 --sun-lux -1 \
+    --plane y=0 -o bad.csv
+expect_exit 2 "clear sky without its sun" -- "$ILLUM" illuminance lamp.json --sky clear --plane y=0 -o bad.csv
+expect_exit 2 "time without the place" -- "$ILLUM" illuminance lamp.json --sky clear \
+    --sun-time 2026-06-21T13:00Z --latitude 52 --plane y=0 -o bad.csv
+expect_exit 2 "--sun and --sun-time" -- "$ILLUM" illuminance lamp.json --sky clear --sun 30,180 \
+    --sun-time 2026-06-21T13:00Z --latitude 52 --longitude 13 --plane y=0 -o bad.csv
+expect_exit 2 "a sun for the overcast sky" -- "$ILLUM" illuminance lamp.json --sky overcast --sun 30,180 \
+    --plane y=0 -o bad.csv
+expect_exit 2 "north without a sky" -- "$ILLUM" render lamp.json --north 20 -o bad.png
+
 # Bad input: a clear message, the exit status, no output file.
 expect_exit 1 "view to CSV" -- "$ILLUM" illuminance lamp.json --view -o bad.csv
 expect_exit 1 "plane to PNG" -- "$ILLUM" illuminance lamp.json --plane y=0 -o bad.png

@@ -12,6 +12,9 @@
  *   horizontal illuminance facing up; facing sideways E_v / E_h =
  *   (pi/6 + 4/9) / (7 pi/9) + albedo / 2 (the sky's half of a vertical
  *   hemisphere, L = Lz (1 + 2 sin a)/3, integrates to Lz (pi/6 + 4/9));
+ * - the CIE clear sky with its sun (il_scene_set_daylight): facing up, the
+ *   sky's horizontal illuminance plus E_sun sin(altitude); facing the sun
+ *   under a black sky, E_sun (the sun's direction, north turned);
  * and against the path tracer: on the Cornell box's floor, the floor's
  * radiance rho E / pi (Lambert).  Lux are 683 lm/W times the Rec.709
  * luminance.  Readings do not depend on the thread count; a stopped
@@ -449,9 +452,53 @@ static void test_overcast_sky(void)
     il_scene_release(s);
 }
 
+/* The clear sky and its sun (il_scene_set_daylight): an upward sensor gets
+ * the sky's horizontal illuminance plus E_sun sin(altitude); a sensor facing
+ * the sun under a nearly black sky gets E_sun, and one facing away none of it. */
+static void test_cie_sky_and_sun(void)
+{
+    const double alt = 35.0, sun = 60000.0;
+    for (int facing = 0; facing < 2; facing++) {
+        il_scene *s = new_scene();
+        uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0.0f)});
+        add_quad(s, v3(500, 500, 500), v3(0.01f, 0, 0), v3(0, 0.01f, 0), black);
+        il_sky_desc d = {.cie_type = 12, .sun_altitude = alt, .sun_azimuth = 200.0, .north = 30.0,
+                         .sun_normal_lux = sun, .horizontal_lux = facing ? 1e-3 : 15000.0,
+                         .ground_albedo = facing ? -1.0 : 0.0};
+        CHECK_OK(il_scene_set_daylight(s, &d, &g_err), &g_err);
+        commit(s);
+        /* Azimuth 200 with north turned 30: 170 degrees clockwise from -z. */
+        double a = 170.0 * PI_D / 180.0, h = alt * PI_D / 180.0;
+        il_vec3 to_sun = v3((float)(cos(h) * sin(a)), (float)sin(h), (float)(-cos(h) * cos(a)));
+        il_sensor sn[2] = {{v3(0, 0, 0), v3(0, 1, 0)}, {v3(0, 0, 0), to_sun}};
+        if (facing)
+            sn[0].normal = v3(-to_sun.x, -to_sun.y, -to_sun.z);
+        il_illuminance r[2];
+        measure(s, sn, 2, (il_illuminance_desc){.samples = 4096, .seed = 5}, r, NULL);
+        if (!facing) {
+            double want = 15000.0 + sun * sin(h);
+            printf("clear sky + sun: horizontal %.1f lx (expected %.1f)\n", (double)r[0].lux, want);
+            CHECK_REL(r[0].lux, want, 0.01);
+        } else {
+            printf("sun alone: facing it %.2f lx (expected %.0f), facing away %.4f lx\n", (double)r[1].lux,
+                   sun, (double)r[0].lux);
+            CHECK_REL(r[1].lux, sun, 1e-4);
+            CHECK(r[0].lux < 1e-2);
+        }
+        il_scene_release(s);
+    }
+    /* The overcast sky through the same call has no sun. */
+    il_scene *s = new_scene();
+    il_error err = {0};
+    CHECK(il_scene_set_daylight(s, &(il_sky_desc){.sun_normal_lux = 100.0}, &err) == IL_ERR_INVALID);
+    CHECK(il_scene_set_daylight(s, NULL, &err) == IL_ERR_INVALID);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_overcast_sky();
+    test_cie_sky_and_sun();
     test_camera_sensors();
     test_point_and_spot();
     test_directional();

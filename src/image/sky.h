@@ -1,0 +1,12 @@
+/* Skies for daylight studies (sky.c; the public il_sky_* in illum.h). */
+#ifndef IL_IMAGE_SKY_H
+#define IL_IMAGE_SKY_H
+
+#include "illum/illum.h"
+
+/* The unit vector in the scene towards (altitude, azimuth), degrees, azimuth
+ * clockwise from north seen from above, north being -z turned by `north`
+ * degrees counter-clockwise about +y (il_sky_desc). */
+il_vec3 il_sky_direction(double altitude, double azimuth, double north);
+
+#endif
