@@ -342,8 +342,10 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
 /* Sets the sky of desc (cie_type 0: the overcast sky; 1-15: il_sky_cie) as
  * the scene's environment and, when sun_normal_lux > 0, adds the sun as a
  * directional light of that illuminance (W/m^2 = lux / 683) shining from
- * (sun_altitude, sun_azimuth).  The overcast sky has no sun: a
- * sun_normal_lux there is refused.  Before commit. */
+ * (sun_altitude, sun_azimuth).  The sun belongs to the sky: the next
+ * il_scene_set_environment or il_scene_set_daylight removes it with the
+ * sky, il_scene_remove_lights with the other lights.  The overcast sky has
+ * no sun: a sun_normal_lux there is refused.  Before commit. */
 il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_error *err);
 
 /* Where the sun stands, seen from latitude and longitude (degrees, north and

@@ -312,10 +312,6 @@ int cli_sun_check(const char *command, const cli_env_options *o);
  * its illuminance from --sun-lux or the model) for a CIE sky and prints
  * it unless quiet; a sun below the horizon is an error (exit 1). */
 int cli_sun_resolve(const cli_env_options *o, il_sky_desc *desc, bool quiet);
-/* Parses an ISO 8601 moment with its UTC offset (2026-06-21T14:30+02:00,
- * ...Z, seconds optional): seconds since 1970-01-01T00:00Z and the local
- * date's day of the year (1-366).  Prints the error and returns false. */
-bool cli_parse_moment(const char *opt, const char *s, double *unix_seconds, int *day_of_year);
 /* cli_load_scene with the environment map of `env` (may be NULL) set
  * between loading and committing. */
 int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);

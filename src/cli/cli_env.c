@@ -5,11 +5,11 @@
  * map is set on the scene after loading and before commit
  * (cli_load_scene_env). */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "image/envmap.h"
+#include "image/sky.h"
 
 const char cli_env_help[] =
     "\n"
@@ -73,15 +73,7 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         return true;
     }
     if (!strcmp(a, "--sky")) {
-        char *end = NULL;
-        long type = !strncmp(v, "cie:", 4) ? strtol(v + 4, &end, 10) : -1;
-        if (!strcmp(v, "overcast")) {
-            o->sky_desc.cie_type = 0;
-        } else if (!strcmp(v, "clear")) {
-            o->sky_desc.cie_type = 12;
-        } else if (end && end != v + 4 && !*end && type >= 1 && type <= 15) {
-            o->sky_desc.cie_type = (int)type;
-        } else {
+        if (!il_sky_type_from_name(v, &o->sky_desc.cie_type)) {
             cli_error("--sky: expected overcast, clear or cie:1 to cie:15, got '%s'", v);
             *rc = IL_EXIT_BAD_INPUT;
         }

@@ -2,87 +2,12 @@
  * --sun ALT,AZ, or --sun-time MOMENT with --latitude and --longitude;
  * --north, --sun-lux.  Shared by render, bake, view and illuminance
  * through cli_env_option. */
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
-
-/* Days from 1970-01-01 to the proleptic Gregorian date y-m-d (H. Hinnant's
- * days_from_civil: years counted from March, in 400-year eras). */
-static long days_from_civil(long y, int m, int d)
-{
-    y -= m <= 2;
-    long era = (y >= 0 ? y : y - 399) / 400;
-    long yoe = y - era * 400;
-    long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-    long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    return era * 146097 + doe - 719468;
-}
-
-static bool leap(long y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
-
-/* Reads exactly n digits at *p into *out. */
-static bool digits(const char **p, int n, long *out)
-{
-    long v = 0;
-    for (int k = 0; k < n; k++, (*p)++) {
-        if (!isdigit((unsigned char)**p))
-            return false;
-        v = 10 * v + (**p - '0');
-    }
-    *out = v;
-    return true;
-}
-
-bool cli_parse_moment(const char *opt, const char *s, double *unix_seconds, int *day_of_year)
-{
-    const char *p = s;
-    long y, mo, d, h, mi, sec = 0, zh = 0, zm = 0;
-    double frac = 0.0;
-    int sign = 0;
-    bool ok = digits(&p, 4, &y) && *p++ == '-' && digits(&p, 2, &mo) && *p++ == '-' && digits(&p, 2, &d) &&
-              (*p == 'T' || *p == 't' || *p == ' ') && (p++, digits(&p, 2, &h)) && *p++ == ':' &&
-              digits(&p, 2, &mi);
-    if (ok && *p == ':') {
-        p++;
-        ok = digits(&p, 2, &sec);
-        if (ok && *p == '.') {
-            double scale = 0.1;
-            for (p++; isdigit((unsigned char)*p); p++, scale /= 10.0)
-                frac += scale * (*p - '0');
-        }
-    }
-    if (ok && (*p == 'Z' || *p == 'z') && p[1] == '\0') {
-        sign = 1;
-    } else if (ok && (*p == '+' || *p == '-')) {
-        sign = *p++ == '-' ? -1 : 1;
-        ok = digits(&p, 2, &zh);
-        if (ok && *p == ':')
-            p++;
-        if (ok && *p)
-            ok = digits(&p, 2, &zm);
-        ok = ok && *p == '\0';
-    }
-    if (!ok || !sign) {
-        cli_error("%s: expected a date, a time and its UTC offset, as 2026-06-21T14:30+02:00 or "
-                  "2026-06-21T12:30Z, got '%s'",
-                  opt, s);
-        return false;
-    }
-    static const int month_days[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    if (y < 1900 || y > 2100 || mo < 1 || mo > 12 || d < 1 ||
-        d > month_days[mo - 1] + (mo == 2 && leap(y)) || h > 23 || mi > 59 || sec > 59 || zh > 14 || zm > 59) {
-        cli_error("%s: '%s' is not a valid moment from 1900 to 2100", opt, s);
-        return false;
-    }
-    long days = days_from_civil(y, (int)mo, (int)d);
-    *day_of_year = (int)(days - days_from_civil(y, 1, 1) + 1);
-    /* Local time minus its offset east of Greenwich is UTC. */
-    *unix_seconds = 86400.0 * days + 3600.0 * h + 60.0 * mi + sec + frac - sign * (3600.0 * zh + 60.0 * zm);
-    return true;
-}
+#include "scene/sun.h"
 
 bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc)
 {
@@ -104,7 +29,10 @@ bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc)
         o->sky_desc.sun_azimuth = aa[1];
         o->has_sun = true;
     } else if (time) {
-        ok = cli_parse_moment(a, v, &o->sun_seconds, &o->sun_day_of_year);
+        il_error err = {0};
+        ok = il_parse_moment(v, &o->sun_seconds, &o->sun_day_of_year, &err) == IL_OK;
+        if (!ok)
+            cli_error("--sun-time: %s", err.message);
         o->sun_time = v;
     } else if (lat) {
         ok = cli_parse_double(a, v, -90.0, 90.0, &o->latitude);
@@ -149,23 +77,15 @@ int cli_sun_resolve(const cli_env_options *o, il_sky_desc *desc, bool quiet)
 {
     if (desc->cie_type == 0)
         return IL_EXIT_OK;
-    if (!o->has_sun) {
-        il_error err = {0};
-        if (il_sun_position(o->latitude, o->longitude, o->sun_seconds, &desc->sun_altitude,
-                            &desc->sun_azimuth, &err) != IL_OK) {
-            cli_error("--sun-time: %s", err.message);
-            return cli_exit_for(err.status);
-        }
-    }
-    if (!(desc->sun_altitude > 0.0)) {
-        if (o->has_sun)
-            cli_error("--sun: the altitude %g is not above the horizon; a CIE sky needs the sun up",
-                      desc->sun_altitude);
-        else
-            cli_error("--sun-time: at %s the sun stands %.2f degrees below the horizon at %g, %g; "
-                      "a CIE sky needs it up",
-                      o->sun_time, -desc->sun_altitude, o->latitude, o->longitude);
+    if (o->has_sun && !(desc->sun_altitude > 0.0)) {
+        cli_error("--sun: the altitude %g is not above the horizon; a CIE sky needs the sun up",
+                  desc->sun_altitude);
         return IL_EXIT_BAD_INPUT;
+    }
+    il_error err = {0};
+    if (!o->has_sun && il_sun_place(desc, o->latitude, o->longitude, o->sun_seconds, o->sun_time, &err) != IL_OK) {
+        cli_error("--sun-time: %s", err.message);
+        return cli_exit_for(err.status);
     }
     desc->sun_normal_lux = o->has_sun_lux ? o->sun_lux
                                           : il_sun_normal_lux(desc->cie_type, desc->sun_altitude,

@@ -20,7 +20,10 @@
  * Below the horizon both have a Lambertian ground of albedo rho lit by the
  * sky and the sun: L = rho E / pi, as in Radiance's gensky with its ground
  * glow. */
+#include <ctype.h>
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "core/color.h"
 #include "core/error.h"
@@ -109,6 +112,22 @@ il_vec3 il_sky_direction(double altitude, double azimuth, double north)
      * turning by r about +y takes the angle a to a - r. */
     double ca = cos(a - r), sa = sin(a - r);
     return (il_vec3){(float)(cos(h) * sa), (float)sin(h), (float)(-cos(h) * ca)};
+}
+
+bool il_sky_type_from_name(const char *name, int *type)
+{
+    if (!strcmp(name, "overcast") || !strcmp(name, "clear")) {
+        *type = name[0] == 'c' ? 12 : 0;
+        return true;
+    }
+    if (strncmp(name, "cie:", 4) || !isdigit((unsigned char)name[4]))
+        return false;
+    char *end = NULL;
+    long n = strtol(name + 4, &end, 10);
+    if (*end || n < 1 || n > 15)
+        return false;
+    *type = (int)n;
+    return true;
 }
 
 static double cie_gradation(const double g[2], double cos_z)

@@ -2,11 +2,17 @@
 #ifndef IL_IMAGE_SKY_H
 #define IL_IMAGE_SKY_H
 
+#include <stdbool.h>
+
 #include "illum/illum.h"
 
 /* The unit vector in the scene towards (altitude, azimuth), degrees, azimuth
  * clockwise from north seen from above, north being -z turned by `north`
  * degrees counter-clockwise about +y (il_sky_desc). */
 il_vec3 il_sky_direction(double altitude, double azimuth, double north);
+
+/* "overcast" (0), "clear" (12) or "cie:N" (N from 1 to 15) into *type;
+ * false for anything else. */
+bool il_sky_type_from_name(const char *name, int *type);
 
 #endif

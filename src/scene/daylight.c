@@ -1,11 +1,14 @@
 /* il_scene_set_daylight: a sky for a daylight study set as the scene's
- * environment, and its sun as a directional light (docs/environment.md#skies). */
+ * environment, and its sun as a directional light that belongs to it: the
+ * next il_scene_set_environment removes the sun with the sky
+ * (docs/environment.md#skies). */
 #include <math.h>
 
 #include "core/color.h"
 #include "core/error.h"
 #include "image/sky.h"
 #include "illum/illum.h"
+#include "scene/scene.h"
 
 il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_error *err)
 {
@@ -25,5 +28,9 @@ il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_err
     il_light_desc sun = {.type = IL_LIGHT_DIRECTIONAL,
                          .direction = {-towards.x, -towards.y, -towards.z},
                          .intensity = {e, e, e}};
-    return il_scene_add_light(scene, &sun, err);
+    if ((st = il_scene_add_light(scene, &sun, err)) != IL_OK)
+        return st;
+    scene->has_sky_sun = true;
+    scene->sky_sun = scene->num_user_lights - 1;
+    return IL_OK;
 }

@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "image/envmap.h"
+#include "image/sky.h"
+#include "scene/sun.h"
 #include "scene/loader.h"
 #include "scene/scene.h"
 #include "scene/xform.h"
@@ -703,17 +705,99 @@ static il_status parse_camera(jctx *c, const cJSON *cam)
     return IL_OK;
 }
 
+/* "environment": {"sky": "overcast"|"clear"|"cie:N"} with "sky_lux",
+ * "ground_albedo", and for a CIE sky its "sun": [altitude, azimuth] or
+ * {"time", "latitude", "longitude"}, "north" and "sun_lux"
+ * (docs/environment.md#skies, il_scene_set_daylight). */
+static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
+{
+    il_sky_desc d = {0};
+    if (!il_sky_type_from_name(name, &d.cie_type))
+        return bad(c, "environment.sky", "expected \"overcast\", \"clear\" or \"cie:1\" to \"cie:15\"");
+    if (cJSON_GetObjectItemCaseSensitive(env, "radiance") || cJSON_GetObjectItemCaseSensitive(env, "map"))
+        return bad(c, "environment", "\"sky\" and \"radiance\" or \"map\" exclude each other");
+    const cJSON *sun = cJSON_GetObjectItemCaseSensitive(env, "sun");
+    bool has_lux, has_albedo, has_north, has_sun_lux;
+    double sun_lux = 0.0;
+    il_status s;
+    if ((s = get_number(c, env, "sky_lux", "environment", &d.horizontal_lux, &has_lux)) != IL_OK ||
+        (s = get_number(c, env, "ground_albedo", "environment", &d.ground_albedo, &has_albedo)) != IL_OK ||
+        (s = get_number(c, env, "north", "environment", &d.north, &has_north)) != IL_OK ||
+        (s = get_number(c, env, "sun_lux", "environment", &sun_lux, &has_sun_lux)) != IL_OK)
+        return s;
+    if (has_lux && !(d.horizontal_lux > 0.0))
+        return bad(c, "environment.sky_lux", "expected a number of lux > 0");
+    if (has_albedo && !(d.ground_albedo >= 0.0 && d.ground_albedo <= 1.0))
+        return bad(c, "environment.ground_albedo", "expected a number from 0 to 1");
+    if (has_albedo && d.ground_albedo == 0.0)
+        d.ground_albedo = -1.0; /* 0 in the desc means the default 0.2 */
+    if (has_sun_lux && !(sun_lux >= 0.0))
+        return bad(c, "environment.sun_lux", "expected a number of lux >= 0");
+    if (d.cie_type == 0) {
+        if (sun || has_north || has_sun_lux)
+            return bad(c, "environment", "the overcast sky has no \"sun\", \"north\" or \"sun_lux\"");
+    } else if (!sun) {
+        return bad(c, "environment.sun", "a CIE sky needs its sun: [altitude, azimuth] or "
+                                         "{\"time\", \"latitude\", \"longitude\"}");
+    } else if (cJSON_IsArray(sun)) {
+        if (cJSON_GetArraySize(sun) != 2 || !cJSON_IsNumber(cJSON_GetArrayItem(sun, 0)) ||
+            !cJSON_IsNumber(cJSON_GetArrayItem(sun, 1)) || !isfinite(cJSON_GetArrayItem(sun, 1)->valuedouble))
+            return bad(c, "environment.sun", "expected [altitude, azimuth] in degrees");
+        d.sun_altitude = cJSON_GetArrayItem(sun, 0)->valuedouble;
+        d.sun_azimuth = cJSON_GetArrayItem(sun, 1)->valuedouble;
+        if (!(d.sun_altitude > 0.0 && d.sun_altitude <= 90.0))
+            return bad(c, "environment.sun", "the altitude must be above the horizon, up to 90 degrees");
+    } else {
+        static const char *const sun_keys[] = {"time", "latitude", "longitude", NULL};
+        const char *time = NULL;
+        double lat = 0.0, lon = 0.0, seconds = 0.0;
+        bool has_lat, has_lon;
+        int day = 0;
+        if ((s = expect_object(c, sun, "environment.sun")) != IL_OK)
+            return s;
+        check_keys(c, sun, "environment.sun", sun_keys);
+        if ((s = get_string(c, sun, "time", "environment.sun", &time)) != IL_OK ||
+            (s = get_number(c, sun, "latitude", "environment.sun", &lat, &has_lat)) != IL_OK ||
+            (s = get_number(c, sun, "longitude", "environment.sun", &lon, &has_lon)) != IL_OK)
+            return s;
+        if (!time || !has_lat || !has_lon)
+            return bad(c, "environment.sun", "expected \"time\", \"latitude\" and \"longitude\"");
+        il_error e = {0};
+        if (il_parse_moment(time, &seconds, &day, &e) != IL_OK ||
+            il_sun_place(&d, lat, lon, seconds, time, &e) != IL_OK)
+            return bad(c, "environment.sun", e.message);
+        if (!has_sun_lux)
+            sun_lux = il_sun_normal_lux(d.cie_type, d.sun_altitude, day);
+        has_sun_lux = true;
+    }
+    d.sun_normal_lux = has_sun_lux ? sun_lux : il_sun_normal_lux(d.cie_type, d.sun_altitude, 0);
+    if ((s = il_scene_set_daylight(c->scene, &d, c->err)) != IL_OK)
+        return il_load_prefix_error(c->err, s, c->path, "environment.sky");
+    return IL_OK;
+}
+
 /* "environment": a constant "radiance", or a "map" (an image file relative
  * to the JSON file) with its "mapping" (default: from the image's shape,
  * image/envmap.h), "rotation" in degrees and "intensity"
- * (docs/environment.md). */
+ * (docs/environment.md); or a "sky" (parse_sky). */
 static il_status parse_environment(jctx *c, const cJSON *env)
 {
-    static const char *const keys[] = {"radiance", "map", "mapping", "rotation", "intensity", NULL};
+    static const char *const keys[] = {"radiance", "map", "mapping", "rotation", "intensity", "sky",
+                                       "sky_lux", "ground_albedo", "sun", "north", "sun_lux", NULL};
     il_status s = expect_object(c, env, "environment");
     if (s != IL_OK)
         return s;
     check_keys(c, env, "environment", keys);
+    const char *sky = NULL;
+    if ((s = get_string(c, env, "sky", "environment", &sky)) != IL_OK)
+        return s;
+    if (sky)
+        return parse_sky(c, env, sky);
+    static const char *const sky_keys[] = {"sky_lux", "ground_albedo", "sun", "north", "sun_lux"};
+    for (size_t k = 0; k < sizeof sky_keys / sizeof sky_keys[0]; k++)
+        if (cJSON_GetObjectItemCaseSensitive(env, sky_keys[k]))
+            return bad(c, "environment", "\"sky_lux\", \"ground_albedo\", \"sun\", \"north\" and "
+                                         "\"sun_lux\" need a \"sky\"");
     il_environment_desc d = {0};
     const char *map = NULL, *mapping = NULL;
     double rotation = 0.0, intensity = 0.0;

@@ -299,6 +299,7 @@ il_status il_scene_remove_lights(il_scene *s, il_error *err)
     if (s->committed)
         return il_fail(err, IL_ERR_INVALID, "the scene is committed and can no longer change");
     s->num_user_lights = 0;
+    s->has_sky_sun = false;
     for (uint32_t i = 0; i < s->num_materials; i++)
         s->materials[i].emission = v3s(0.0f);
     return IL_OK;
@@ -347,6 +348,17 @@ static void free_envmap(il_scene *s)
 
 /* A map is copied (times its intensity) and its sampling tables are built
  * here, so that commit and rendering find them ready (image/envmap.h). */
+/* A new environment replaces the old one's sun too (il_scene_set_daylight). */
+static void drop_sky_sun(il_scene *s)
+{
+    if (!s->has_sky_sun)
+        return;
+    memmove(&s->user_lights[s->sky_sun], &s->user_lights[s->sky_sun + 1],
+            sizeof(il_light_desc) * (s->num_user_lights - s->sky_sun - 1));
+    s->num_user_lights--;
+    s->has_sky_sun = false;
+}
+
 il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il_error *err)
 {
     if (s->committed)
@@ -357,6 +369,7 @@ il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il
         return il_fail(err, IL_ERR_INVALID, "environment: radiance must be finite and >= 0");
     if (!d->map) {
         free_envmap(s);
+        drop_sky_sun(s);
         s->environment = *d;
         s->has_environment = !v3_is_zero(d->radiance);
         return IL_OK;
@@ -373,6 +386,7 @@ il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il
         return st;
     }
     free_envmap(s);
+    drop_sky_sun(s);
     s->envmap = env;
     s->environment = *d;
     s->environment.map = NULL;

@@ -116,6 +116,9 @@ struct il_scene {
     il_material *materials; uint32_t num_materials, cap_materials;
     il_texture *textures;   uint32_t num_textures, cap_textures;
     il_light_desc *user_lights; uint32_t num_user_lights, cap_user_lights;
+    bool has_sky_sun;       /* user_lights[sky_sun] is the sun il_scene_set_daylight added:
+                               it goes with its sky when the environment is replaced */
+    uint32_t sky_sun;
     il_scene_camera camera;
     il_environment_desc environment; /* as given, but map is NULL (the map lives in envmap)
                                         and, with a map, radiance is its mean radiance */

@@ -7,10 +7,13 @@
  * (1950-2050)", Solar Energy 40(3)), about 0.01 degree; sidereal time after
  * Meeus, Astronomical Algorithms (2nd ed.), eq. 12.4; refraction after
  * Saemundsson (Meeus eq. 16.4). */
+#include <ctype.h>
 #include <math.h>
+#include <stdbool.h>
 
 #include "core/error.h"
 #include "illum/illum.h"
+#include "scene/sun.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -70,4 +73,90 @@ double il_sun_normal_lux(int cie_type, double sun_altitude, int day_of_year)
                         : 1.0;
     double air_mass = 1.0 / sin(fmin(sun_altitude, 90.0) * DEG);
     return 127500.0 * season * exp(-extinction * air_mass);
+}
+
+/* Days from 1970-01-01 to the proleptic Gregorian date y-m-d (H. Hinnant's
+ * days_from_civil: years counted from March, in 400-year eras). */
+static long days_from_civil(long y, int m, int d)
+{
+    y -= m <= 2;
+    long era = (y >= 0 ? y : y - 399) / 400;
+    long yoe = y - era * 400;
+    long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+    long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    return era * 146097 + doe - 719468;
+}
+
+static bool leap(long y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
+
+/* Reads exactly n digits at *p into *out. */
+static bool digits(const char **p, int n, long *out)
+{
+    long v = 0;
+    for (int k = 0; k < n; k++, (*p)++) {
+        if (!isdigit((unsigned char)**p))
+            return false;
+        v = 10 * v + (**p - '0');
+    }
+    *out = v;
+    return true;
+}
+
+il_status il_parse_moment(const char *s, double *unix_seconds, int *day_of_year, il_error *err)
+{
+    const char *p = s;
+    long y, mo, d, h, mi, sec = 0, zh = 0, zm = 0;
+    double frac = 0.0;
+    int sign = 0;
+    bool ok = digits(&p, 4, &y) && *p++ == '-' && digits(&p, 2, &mo) && *p++ == '-' && digits(&p, 2, &d) &&
+              (*p == 'T' || *p == 't' || *p == ' ') && (p++, digits(&p, 2, &h)) && *p++ == ':' &&
+              digits(&p, 2, &mi);
+    if (ok && *p == ':') {
+        p++;
+        ok = digits(&p, 2, &sec);
+        if (ok && *p == '.') {
+            double scale = 0.1;
+            for (p++; isdigit((unsigned char)*p); p++, scale /= 10.0)
+                frac += scale * (*p - '0');
+        }
+    }
+    if (ok && (*p == 'Z' || *p == 'z') && p[1] == '\0') {
+        sign = 1;
+    } else if (ok && (*p == '+' || *p == '-')) {
+        sign = *p++ == '-' ? -1 : 1;
+        ok = digits(&p, 2, &zh);
+        if (ok && *p == ':')
+            p++;
+        if (ok && *p)
+            ok = digits(&p, 2, &zm);
+        ok = ok && *p == '\0';
+    }
+    if (!ok || !sign)
+        return il_fail(err, IL_ERR_INVALID,
+                       "expected a date, a time and its UTC offset, as 2026-06-21T14:30+02:00 or "
+                       "2026-06-21T12:30Z, got '%s'",
+                       s);
+    static const int month_days[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    if (y < 1900 || y > 2100 || mo < 1 || mo > 12 || d < 1 ||
+        d > month_days[mo - 1] + (mo == 2 && leap(y)) || h > 23 || mi > 59 || sec > 59 || zh > 14 || zm > 59)
+        return il_fail(err, IL_ERR_INVALID, "'%s' is not a valid moment from 1900 to 2100", s);
+    long days = days_from_civil(y, (int)mo, (int)d);
+    *day_of_year = (int)(days - days_from_civil(y, 1, 1) + 1);
+    /* Local time minus its offset east of Greenwich is UTC. */
+    *unix_seconds = 86400.0 * days + 3600.0 * h + 60.0 * mi + sec + frac - sign * (3600.0 * zh + 60.0 * zm);
+    return IL_OK;
+}
+
+il_status il_sun_place(il_sky_desc *desc, double latitude, double longitude, double unix_seconds,
+                       const char *moment, il_error *err)
+{
+    il_status st = il_sun_position(latitude, longitude, unix_seconds, &desc->sun_altitude,
+                                   &desc->sun_azimuth, err);
+    if (st != IL_OK)
+        return st;
+    if (!(desc->sun_altitude > 0.0))
+        return il_fail(err, IL_ERR_INVALID,
+                       "at %s the sun stands %.2f degrees below the horizon at %g, %g; a CIE sky needs it up",
+                       moment, -desc->sun_altitude, latitude, longitude);
+    return IL_OK;
 }

@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "illum/illum.h"
+#include "scene/sun.h"
 
 #define PI_D 3.14159265358979323846
 #define DEG (PI_D / 180.0)
@@ -209,9 +210,48 @@ static void test_cie_sky(void)
     printf("overcast with a sun: %s\n", err.message);
 }
 
+/* ISO 8601 moments with their UTC offsets (il_parse_moment, shared by
+ * --sun-time and the JSON "sun"). */
+static void test_moments(void)
+{
+    static const struct { const char *text; double seconds; int day; } good[] = {
+        {"2003-10-17T12:30:30-07:00", 1066419030.0, 290},
+        {"2003-10-17T19:30:30Z", 1066419030.0, 290},
+        {"2003-10-17 21:30:30+0200", 1066419030.0, 290},
+        {"2003-10-17T19:30:30.25z", 1066419030.25, 290},
+        {"2026-06-21T14:30+02", 1782045000.0, 172},
+        {"2024-02-29T00:00Z", 1709164800.0, 60},
+        {"2024-12-31T23:59:59Z", 1735689599.0, 366},
+        {"2026-01-01T00:30+01:00", 1767223800.0, 1},   /* 2025-12-31 23:30 UTC, local New Year's Day */
+        {"1900-01-01T00:00Z", -2208988800.0, 1},
+    };
+    for (size_t k = 0; k < sizeof good / sizeof good[0]; k++) {
+        il_error err = {0};
+        double t = 0.0;
+        int day = 0;
+        CHECK_OK(il_parse_moment(good[k].text, &t, &day, &err), &err);
+        if (t != good[k].seconds || day != good[k].day)
+            printf("%s: %.2f day %d, expected %.2f day %d\n", good[k].text, t, day, good[k].seconds, good[k].day);
+        CHECK(t == good[k].seconds && day == good[k].day);
+    }
+    static const char *const bad[] = {"2026-06-21T12:00", "2026-06-21", "2026-6-21T12:00Z", "2026-06-21T24:00Z",
+                                      "2026-06-21T12:60Z", "2026-02-29T12:00Z", "2100-02-29T12:00Z",
+                                      "1899-12-31T23:59Z", "2101-01-01T00:00Z", "2026-13-01T00:00Z",
+                                      "2026-06-21T12:00+15:00", "2026-06-21T12:00Zx", "2026-06-21T12:00+2",
+                                      "tomorrow", ""};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        il_error err = {0};
+        double t = 0.0;
+        int day = 0;
+        CHECK(il_parse_moment(bad[k], &t, &day, &err) == IL_ERR_INVALID);
+        printf("bad moment '%s': %s\n", bad[k], err.message);
+    }
+}
+
 int main(void)
 {
     test_sun_position();
+    test_moments();
     test_sun_normal_lux();
     test_cie_sky();
     return check_report();

@@ -353,6 +353,32 @@ static void test_errors(void)
         {"{\"meshes\":[{\"shape\":\"quad\"}],\n  \"lights\": [}", IL_ERR_FORMAT,
          "bad.json: invalid JSON near line 2"},
         {"", IL_ERR_FORMAT, "bad.json: invalid JSON"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"cloudy\"}}",
+         IL_ERR_FORMAT, "bad.json: environment.sky: expected \"overcast\", \"clear\" or \"cie:1\" to \"cie:15\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\"}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: a CIE sky needs its sun"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"overcast\",\"sun\":[30,180]}}",
+         IL_ERR_FORMAT, "bad.json: environment: the overcast sky has no \"sun\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"map\":\"a.hdr\"}}",
+         IL_ERR_FORMAT, "bad.json: environment: \"sky\" and \"radiance\" or \"map\" exclude each other"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"radiance\":1,\"sky_lux\":5}}",
+         IL_ERR_FORMAT, "bad.json: environment: \"sky_lux\", \"ground_albedo\", \"sun\", \"north\" and \"sun_lux\" need a \"sky\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"cie:7\",\"sun\":[-3,180]}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: the altitude must be above the horizon"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30]}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: expected [altitude, azimuth] in degrees"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":{\"time\":\"2026-06-21T12:00\",\"latitude\":52,\"longitude\":13}}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: expected a date, a time and its UTC offset"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":{\"time\":\"2026-12-21T23:00Z\",\"latitude\":52,\"longitude\":13}}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: at 2026-12-21T23:00Z the sun stands"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":{\"time\":\"2026-06-21T12:00Z\",\"latitude\":52}}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun: expected \"time\", \"latitude\" and \"longitude\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30,180],\"sky_lux\":0}}",
+         IL_ERR_FORMAT, "bad.json: environment.sky_lux: expected a number of lux > 0"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30,180],\"ground_albedo\":2}}",
+         IL_ERR_FORMAT, "bad.json: environment.ground_albedo: expected a number from 0 to 1"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30,180],\"sun_lux\":-1}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun_lux: expected a number of lux >= 0"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         il_error err = {0};
@@ -430,6 +456,46 @@ static void test_shipped_scenes(void)
     }
 }
 
+/* "environment": {"sky": ...}: the clear sky and its sun from NREL's SPA
+ * example (2003-10-17, day 290), north turned; the sun goes with its sky
+ * when the environment is replaced, the scene's own lights stay. */
+static void test_sky(void)
+{
+    il_scene *s = load_json_ok("sky.json",
+        "{\"meshes\": [{\"shape\": \"quad\"}],\n"
+        " \"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0]}],\n"
+        " \"environment\": {\"sky\": \"clear\", \"north\": 30, \"sky_lux\": 20000,\n"
+        "   \"sun\": {\"time\": \"2003-10-17T12:30:30-07:00\", \"latitude\": 39.742476,\n"
+        "           \"longitude\": -105.1786}}}\n");
+    CHECK(s->has_environment && s->envmap != NULL);
+    CHECK(s->num_user_lights == 2);
+    const il_light_desc *sun = &s->user_lights[1];
+    CHECK(sun->type == IL_LIGHT_DIRECTIONAL);
+    double alt = 0.0, az = 0.0;
+    il_error err = {0};
+    CHECK_OK(il_sun_position(39.742476, -105.1786, 1066419030.0, &alt, &az, &err), &err);
+    CHECK_REL(sun->intensity.y, il_sun_normal_lux(12, alt, 290) / 683.0, 1e-6);
+    /* Travelling away from the sun: azimuth 194.34 with north turned 30 is
+     * 164.34 degrees clockwise from -z. */
+    double h = alt * 3.14159265358979 / 180.0, a = (az - 30.0) * 3.14159265358979 / 180.0;
+    CHECK_NEAR(sun->direction.x, -cos(h) * sin(a), 1e-5);
+    CHECK_NEAR(sun->direction.y, -sin(h), 1e-5);
+    CHECK_NEAR(sun->direction.z, cos(h) * cos(a), 1e-5);
+    CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {1, 1, 1}}, &err), &err);
+    CHECK(s->num_user_lights == 1 && s->user_lights[0].type == IL_LIGHT_POINT);
+    il_scene_release(s);
+
+    s = load_json_ok("sky2.json", "{\"meshes\": [{\"shape\": \"quad\"}],\n"
+                                  " \"environment\": {\"sky\": \"cie:3\", \"sun\": [40, 90]}}\n");
+    CHECK(s->num_user_lights == 0); /* an overcast type: no direct sun */
+    CHECK(s->has_environment);
+    il_scene_release(s);
+    s = load_json_ok("sky3.json", "{\"meshes\": [{\"shape\": \"quad\"}],\n"
+                                  " \"environment\": {\"sky\": \"overcast\", \"ground_albedo\": 0}}\n");
+    CHECK(s->num_user_lights == 0 && s->has_environment);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_full_scene();
@@ -438,5 +504,6 @@ int main(void)
     test_errors();
     test_warnings_and_fallbacks();
     test_shipped_scenes();
+    test_sky();
     return check_report();
 }
