@@ -19,7 +19,7 @@ bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc)
         o->first_sun_setting = a;
     bool ok = true;
     if (sun) {
-        double aa[2];
+        double aa[2] = {0.0, 0.0};
         ok = cli_parse_numbers(a, v, 2, "ALTITUDE,AZIMUTH in degrees", aa);
         if (ok && !(aa[0] >= -90.0 && aa[0] <= 90.0)) {
             cli_error("--sun: the altitude %g is not -90 to 90 degrees", aa[0]);

@@ -719,6 +719,7 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
     const cJSON *sun = cJSON_GetObjectItemCaseSensitive(env, "sun");
     bool has_lux, has_albedo, has_north, has_sun_lux;
     double sun_lux = 0.0;
+    int day = 0; /* of the year, for the sun model's season; 0 without a date */
     il_status s;
     if ((s = get_number(c, env, "sky_lux", "environment", &d.horizontal_lux, &has_lux)) != IL_OK ||
         (s = get_number(c, env, "ground_albedo", "environment", &d.ground_albedo, &has_albedo)) != IL_OK ||
@@ -752,7 +753,6 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
         const char *time = NULL;
         double lat = 0.0, lon = 0.0, seconds = 0.0;
         bool has_lat, has_lon;
-        int day = 0;
         if ((s = expect_object(c, sun, "environment.sun")) != IL_OK)
             return s;
         check_keys(c, sun, "environment.sun", sun_keys);
@@ -766,11 +766,8 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
         if (il_parse_moment(time, &seconds, &day, &e) != IL_OK ||
             il_sun_place(&d, lat, lon, seconds, time, &e) != IL_OK)
             return bad(c, "environment.sun", e.message);
-        if (!has_sun_lux)
-            sun_lux = il_sun_normal_lux(d.cie_type, d.sun_altitude, day);
-        has_sun_lux = true;
     }
-    d.sun_normal_lux = has_sun_lux ? sun_lux : il_sun_normal_lux(d.cie_type, d.sun_altitude, 0);
+    d.sun_normal_lux = has_sun_lux ? sun_lux : il_sun_normal_lux(d.cie_type, d.sun_altitude, day);
     if ((s = il_scene_set_daylight(c->scene, &d, c->err)) != IL_OK)
         return il_load_prefix_error(c->err, s, c->path, "environment.sky");
     return IL_OK;
