@@ -212,8 +212,9 @@ il_status il_scene_set_environment(il_scene *scene, const il_environment_desc *d
  * rendering; the scene must not be changed afterwards. */
 il_status il_scene_commit(il_scene *scene, il_error *err);
 /* Before commit: removes the point, spot and directional lights and darkens
- * every emitter (their surfaces stay, as dark lamps); the environment stays.
- * For a scene lit by its sky alone (a daylight study). */
+ * every emitter (their surfaces stay, as dark lamps); the environment stays,
+ * and so does the sun il_scene_set_daylight added with it.  For a scene lit
+ * by its sky alone (a daylight study). */
 il_status il_scene_remove_lights(il_scene *scene, il_error *err);
 
 /* Render settings a scene file asked for (the "render" block of a JSON scene,
@@ -344,8 +345,8 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
  * directional light of that illuminance (W/m^2 = lux / 683) shining from
  * (sun_altitude, sun_azimuth).  The sun belongs to the sky: the next
  * il_scene_set_environment or il_scene_set_daylight removes it with the
- * sky, il_scene_remove_lights with the other lights.  The overcast sky has
- * no sun: a sun_normal_lux there is refused.  Before commit. */
+ * sky, and il_scene_remove_lights leaves it.  The overcast sky has no sun:
+ * a sun_normal_lux there is refused.  Before commit. */
 il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_error *err);
 
 /* Where the sun stands, seen from latitude and longitude (degrees, north and

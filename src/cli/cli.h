@@ -295,7 +295,7 @@ extern const char cli_env_help[];
 /* As cli_radiosity_option, for the options above. */
 bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc);
 /* After parsing: an --env-* setting without --env, a sky setting without
- * --sky, --sky-only without either, or both --env and --sky is a usage error. */
+ * --sky, or both --env and --sky is a usage error (and cli_sun_check's). */
 int cli_env_check(const char *command, const cli_env_options *o);
 /* Reads o->file (or makes the sky) and sets it as the scene's environment
  * (before commit); prints the error (a missing, corrupt or misshapen map)

@@ -197,7 +197,7 @@ int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env,
     il_error err = {0};
     il_load_desc ld = {.log = cli_log, .log_user = &quiet_flag};
     il_status st = il_scene_load(path, &ld, out, &err);
-    if (st == IL_OK && env && (env->file || env->sky)) {
+    if (st == IL_OK && env && (env->file || env->sky || env->sky_only)) {
         /* The map replaces the scene's sky before the light tables are built. */
         int rc = cli_env_apply(*out, env, quiet);
         if (rc != IL_EXIT_OK) {

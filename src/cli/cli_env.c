@@ -40,8 +40,9 @@ const char cli_env_help[] =
     "                         seen from above (default 0: north -z, east +x)\n"
     "  --sun-lux E            the sun's illuminance facing it (default: the IES\n"
     "                         model for the sky type and altitude; 0: no sun)\n"
-    "  --sky-only             light the scene by the sky (--env or --sky) alone: its\n"
-    "                         own lights and emitters are switched off\n";
+    "  --sky-only             light the scene by the sky alone (--env, --sky or the\n"
+    "                         scene's own): its lights and emitters are switched\n"
+    "                         off, a CIE sky's sun stays\n";
 
 bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
 {
@@ -127,10 +128,6 @@ int cli_env_check(const char *command, const cli_env_options *o)
         cli_error("%s: %s needs --sky (see 'illum %s --help')", command, o->first_sky_setting, command);
         return IL_EXIT_USAGE;
     }
-    if (o->sky_only && !o->sky && !o->file) {
-        cli_error("%s: --sky-only needs --sky or --env FILE", command);
-        return IL_EXIT_USAGE;
-    }
     if (o->sky && o->file) {
         cli_error("%s: --env and --sky both set the sky; give one", command);
         return IL_EXIT_USAGE;
@@ -140,14 +137,24 @@ int cli_env_check(const char *command, const cli_env_options *o)
 
 int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
 {
-    if (!o || (!o->file && !o->sky))
+    if (!o || (!o->file && !o->sky && !o->sky_only))
         return IL_EXIT_OK;
     il_error err = {0};
     il_image img = {0};
+    if (o->sky_only && !o->file && !o->sky) {
+        il_scene_info info;
+        il_scene_get_info(scene, &info);
+        if (!info.has_environment) {
+            cli_error("--sky-only: the scene has no sky of its own; give --sky or --env FILE");
+            return IL_EXIT_BAD_INPUT;
+        }
+    }
     if (o->sky_only && il_scene_remove_lights(scene, &err) != IL_OK) {
         cli_error("--sky-only: %s", err.message);
         return cli_exit_for(err.status);
     }
+    if (!o->file && !o->sky)
+        return IL_EXIT_OK; /* the scene's own sky */
     if (o->sky) {
         il_sky_desc sky = o->sky_desc;
         int rc = cli_sun_resolve(o, &sky, quiet);

@@ -298,8 +298,12 @@ il_status il_scene_remove_lights(il_scene *s, il_error *err)
         return il_fail(err, IL_ERR_INVALID, "remove lights: no scene");
     if (s->committed)
         return il_fail(err, IL_ERR_INVALID, "the scene is committed and can no longer change");
-    s->num_user_lights = 0;
-    s->has_sky_sun = false;
+    /* The sun of il_scene_set_daylight belongs to the sky and stays. */
+    if (s->has_sky_sun) {
+        s->user_lights[0] = s->user_lights[s->sky_sun];
+        s->sky_sun = 0;
+    }
+    s->num_user_lights = s->has_sky_sun ? 1u : 0u;
     for (uint32_t i = 0; i < s->num_materials; i++)
         s->materials[i].emission = v3s(0.0f);
     return IL_OK;

@@ -145,7 +145,8 @@ expect_exit 1 "unknown sky" -- "$ILLUM" illuminance lamp.json --sky cloudy --pla
 expect_exit 1 "ground albedo 2" -- "$ILLUM" illuminance lamp.json --sky overcast --ground-albedo 2 --plane y=0 -o bad.csv
 expect_exit 2 "sky lux without the sky" -- "$ILLUM" illuminance lamp.json --sky-lux 5000 --plane y=0 -o bad.csv
 expect_exit 2 "sky and env" -- "$ILLUM" illuminance lamp.json --sky overcast --env x.hdr --plane y=0 -o bad.csv
-expect_exit 2 "sky only without a sky" -- "$ILLUM" render lamp.json --sky-only -o bad.png
+expect_exit 1 "sky only without a sky" -- "$ILLUM" render lamp.json --sky-only -o bad.png
+expect_stderr "the scene has no sky of its own" "sky only without a sky"
 
 # The clear sky and its sun (--sky clear, CIE type 12): the open floor gets
 # the sky's horizontal illuminance plus the sun's E sin(altitude), 10,000 +
@@ -166,6 +167,24 @@ expect_exit 0 "clear sky, --sun-time" -- "$ILLUM" illuminance lamp.json --sky ci
     --sun-time 2003-10-17T12:30:30-07:00 --latitude 39.742476 --longitude -105.1786 --north 30 \
     --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 16
 expect_stderr "sun at 39.89 degrees altitude, 194.34 azimuth" "SPA's example"
+# A JSON scene's own clear sky and sun: --sky-only switches the lamp off and
+# keeps the sky's sun (10,000 + 40,000 sin 30 = 30,000 lx); --sky overcast on
+# the command line replaces the sky and its sun (10,000 lx).
+cat > sunny.json <<'JSON'
+{"meshes": [{"shape": "quad", "size": 4}],
+ "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 10}],
+ "environment": {"sky": "clear", "sun": [30, 180], "sun_lux": 40000, "ground_albedo": 0}}
+JSON
+expect_exit 0 "JSON sky, sky only" -- "$ILLUM" illuminance sunny.json --sky-only --plane y=0 \
+    --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 4096 -o sunny.csv
+checks=$((checks + 1))
+awk -F, 'NR == 2 { d = $7 - 30000; exit !(d < 300 && d > -300) }' sunny.csv ||
+    fail "sunny.csv: $(sed -n 2p sunny.csv), expected 30000 lx within 1%"
+expect_exit 0 "JSON sky replaced" -- "$ILLUM" illuminance sunny.json --sky overcast --sky-only --plane y=0 \
+    --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 1024 -o overcast.csv
+checks=$((checks + 1))
+awk -F, 'NR == 2 { d = $7 - 10000; exit !(d < 100 && d > -100) }' overcast.csv ||
+    fail "overcast.csv: $(sed -n 2p overcast.csv), expected 10000 lx within 1%"
 expect_exit 0 "render under a clear sky" -- "$ILLUM" render lamp.json --sky cie:7 --sun 45,90 --width 8 \
     --height 8 --spp 2 -q -o clear.pfm
 expect_file clear.pfm "render under a clear sky"

@@ -458,15 +458,17 @@ static void test_shipped_scenes(void)
 
 /* "environment": {"sky": ...}: the clear sky and its sun from NREL's SPA
  * example (2003-10-17, day 290), north turned; the sun goes with its sky
- * when the environment is replaced, the scene's own lights stay. */
+ * when the environment is replaced, the scene's own lights stay; switching
+ * those off (il_scene_remove_lights) keeps the sun. */
 static void test_sky(void)
 {
-    il_scene *s = load_json_ok("sky.json",
+    static const char sky_json[] =
         "{\"meshes\": [{\"shape\": \"quad\"}],\n"
         " \"lights\": [{\"type\": \"point\", \"position\": [0, 1, 0]}],\n"
         " \"environment\": {\"sky\": \"clear\", \"north\": 30, \"sky_lux\": 20000,\n"
         "   \"sun\": {\"time\": \"2003-10-17T12:30:30-07:00\", \"latitude\": 39.742476,\n"
-        "           \"longitude\": -105.1786}}}\n");
+        "           \"longitude\": -105.1786}}}\n";
+    il_scene *s = load_json_ok("sky.json", sky_json);
     CHECK(s->has_environment && s->envmap != NULL);
     CHECK(s->num_user_lights == 2);
     const il_light_desc *sun = &s->user_lights[1];
@@ -483,6 +485,13 @@ static void test_sky(void)
     CHECK_NEAR(sun->direction.z, cos(h) * cos(a), 1e-5);
     CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {1, 1, 1}}, &err), &err);
     CHECK(s->num_user_lights == 1 && s->user_lights[0].type == IL_LIGHT_POINT);
+    il_scene_release(s);
+    /* Switching the scene's own lights off leaves the sky's sun. */
+    s = load_json_ok("sky.json", sky_json);
+    CHECK_OK(il_scene_remove_lights(s, &err), &err);
+    CHECK(s->num_user_lights == 1 && s->user_lights[0].type == IL_LIGHT_DIRECTIONAL);
+    CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {1, 1, 1}}, &err), &err);
+    CHECK(s->num_user_lights == 0);
     il_scene_release(s);
 
     s = load_json_ok("sky2.json", "{\"meshes\": [{\"shape\": \"quad\"}],\n"
