@@ -289,6 +289,8 @@ typedef struct cli_env_options {
     bool has_latitude, has_longitude;
     double sun_lux;                  /* --sun-lux; has_sun_lux false: the IES model's */
     bool has_sun_lux;
+    bool sky_applied;                /* cli_env_apply set --sky: */
+    il_sky_desc applied;             /* ... as set, its sun placed (for --stats) */
 } cli_env_options;
 
 extern const char cli_env_help[];
@@ -300,7 +302,11 @@ int cli_env_check(const char *command, const cli_env_options *o);
 /* Reads o->file (or makes the sky) and sets it as the scene's environment
  * (before commit); prints the error (a missing, corrupt or misshapen map)
  * and returns its exit status.  Does nothing when o is NULL or has neither. */
-int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
+int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet);
+/* The sky --sky set, as "sky": {type, sky_lux, ground_albedo and, for a CIE
+ * sky, sun_altitude, sun_azimuth, north, sun_normal_lux} in parent; nothing
+ * without --sky. */
+void cli_sky_stats_json(struct cJSON *parent, const cli_env_options *o);
 
 /* The sun of a CIE sky (cli_sun.c, docs/environment.md#skies). */
 /* --sun, --sun-time, --latitude, --longitude, --north, --sun-lux, as
@@ -314,7 +320,7 @@ int cli_sun_check(const char *command, const cli_env_options *o);
 int cli_sun_resolve(const cli_env_options *o, il_sky_desc *desc, bool quiet);
 /* cli_load_scene with the environment map of `env` (may be NULL) set
  * between loading and committing. */
-int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);
+int cli_load_scene_env(const char *path, bool quiet, cli_env_options *env, il_scene **out);
 
 /* Compute devices (cli_device.c, docs/cuda.md): `illum info --devices`
  * prints the CPU and every CUDA GPU (or why there is none); --device NAME is

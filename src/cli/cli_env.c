@@ -4,8 +4,11 @@
  * --ground-albedo and the sun's options (cli_sun.c).  The
  * map is set on the scene after loading and before commit
  * (cli_load_scene_env). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+#include <cjson/cJSON.h>
 
 #include "cli/cli.h"
 #include "image/envmap.h"
@@ -135,7 +138,7 @@ int cli_env_check(const char *command, const cli_env_options *o)
     return cli_sun_check(command, o);
 }
 
-int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
+int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet)
 {
     if (!o || (!o->file && !o->sky && !o->sky_only))
         return IL_EXIT_OK;
@@ -164,6 +167,8 @@ int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
             cli_error("--sky: %s", err.message);
             return cli_exit_for(err.status);
         }
+        o->applied = sky;
+        o->sky_applied = true;
         return IL_EXIT_OK;
     }
     il_status st = il_image_read(o->file, &img, &err);
@@ -185,4 +190,23 @@ int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
         return cli_exit_for(st);
     }
     return IL_EXIT_OK;
+}
+
+void cli_sky_stats_json(struct cJSON *parent, const cli_env_options *o)
+{
+    if (!o->sky_applied)
+        return;
+    const il_sky_desc *d = &o->applied;
+    cJSON *sky = cJSON_AddObjectToObject(parent, "sky");
+    char type[16];
+    snprintf(type, sizeof type, d->cie_type ? "cie:%d" : "overcast", d->cie_type);
+    cJSON_AddStringToObject(sky, "type", type);
+    cJSON_AddNumberToObject(sky, "sky_lux", d->horizontal_lux > 0.0 ? d->horizontal_lux : 10000.0);
+    cJSON_AddNumberToObject(sky, "ground_albedo", d->ground_albedo == 0.0 ? 0.2 : fmax(d->ground_albedo, 0.0));
+    if (!d->cie_type)
+        return;
+    cJSON_AddNumberToObject(sky, "sun_altitude", d->sun_altitude);
+    cJSON_AddNumberToObject(sky, "sun_azimuth", d->sun_azimuth);
+    cJSON_AddNumberToObject(sky, "north", d->north);
+    cJSON_AddNumberToObject(sky, "sun_normal_lux", d->sun_normal_lux);
 }

@@ -378,6 +378,7 @@ static int write_stats(const options *o, size_t sensors, const il_illuminance_st
             cJSON_AddNumberToObject(df, "maximum", 100.0 * hi / m->outdoor);
         }
     }
+    cli_sky_stats_json(j, &o->env);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;

@@ -131,7 +131,8 @@ expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% ave
 expect_exit 0 "overcast, --stats" -- "$ILLUM" illuminance lamp.json --sky overcast --sky-only \
     --plane y=0 --area -1,-1,1,1 --spacing 1 --samples 64 -q --stats sky.json
 for k in '"mode":[[:space:]]*"plane"' '"sensors":[[:space:]]*4' '"samples":[[:space:]]*64' \
-         '"average":' '"uniformity_min_average":' '"daylight_factor":' '"outdoor_lux":[[:space:]]*10000'; do
+         '"average":' '"uniformity_min_average":' '"daylight_factor":' '"outdoor_lux":[[:space:]]*10000' \
+         '"type":[[:space:]]*"overcast"'; do
     checks=$((checks + 1))
     grep -q "$k" sky.json || fail "sky.json lacks $k"
 done
@@ -165,8 +166,13 @@ checks=$((checks + 1))
 grep -q "daylight" out.txt && fail "clear sky: a daylight factor"
 expect_exit 0 "clear sky, --sun-time" -- "$ILLUM" illuminance lamp.json --sky cie:12 \
     --sun-time 2003-10-17T12:30:30-07:00 --latitude 39.742476 --longitude -105.1786 --north 30 \
-    --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 16
+    --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 16 --stats sun.json
 expect_stderr "sun at 39.89 degrees altitude, 194.34 azimuth" "SPA's example"
+for k in '"type":[[:space:]]*"cie:12"' '"sun_altitude":[[:space:]]*39.89' '"sun_azimuth":[[:space:]]*194.33' \
+         '"north":[[:space:]]*30' '"sun_normal_lux":' '"sky_lux":[[:space:]]*10000'; do
+    checks=$((checks + 1))
+    grep -q "$k" sun.json || fail "sun.json lacks $k"
+done
 # A JSON scene's own clear sky and sun: --sky-only switches the lamp off and
 # keeps the sky's sun (10,000 + 40,000 sin 30 = 30,000 lx); --sky overcast on
 # the command line replaces the sky and its sun (10,000 lx).
