@@ -300,8 +300,11 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc);
  * --sky, or both --env and --sky is a usage error (and cli_sun_check's). */
 int cli_env_check(const char *command, const cli_env_options *o);
 /* Reads o->file (or makes the sky) and sets it as the scene's environment
- * (before commit); prints the error (a missing, corrupt or misshapen map)
- * and returns its exit status.  Does nothing when o is NULL or has neither. */
+ * (before commit), after switching the scene's own lights off for
+ * --sky-only (which alone keeps the scene's own sky, an error when it has
+ * none); prints the error (a missing, corrupt or misshapen map) and
+ * returns its exit status.  Does nothing when o is NULL or asks for none
+ * of this. */
 int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet);
 /* The sky --sky set, as "sky": {type, sky_lux, ground_albedo and, for a CIE
  * sky, sun_altitude, sun_azimuth, north, sun_normal_lux} in parent; nothing
