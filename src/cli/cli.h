@@ -313,8 +313,8 @@ void cli_sky_stats_json(struct cJSON *parent, const cli_env_options *o);
 
 /* The sun of a CIE sky (cli_sun.c, docs/environment.md#skies). */
 /* --sun, --sun-time, --latitude, --longitude, --north, --sun-lux, as
- * cli_env_option does for the rest. */
-bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc);
+ * cli_env_option (which calls it first) does for the rest. */
+bool cli_sun_option(int argc, char **argv, int *i, cli_env_options *o, int *rc);
 /* Usage errors among those: IL_EXIT_OK or IL_EXIT_USAGE (message printed). */
 int cli_sun_check(const char *command, const cli_env_options *o);
 /* Fills desc's sun (its position from --sun or from the moment and place,

@@ -55,12 +55,9 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         *rc = IL_EXIT_OK;
         return true;
     }
-    static const char *const sun_options[] = {"--sun", "--sun-time", "--latitude", "--longitude",
-                                              "--north", "--sun-lux"};
-    bool sun = false;
-    for (size_t k = 0; k < sizeof sun_options / sizeof sun_options[0]; k++)
-        sun = sun || !strcmp(a, sun_options[k]);
-    if (!sun && strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
+    if (cli_sun_option(argc, argv, i, o, rc))
+        return true;
+    if (strcmp(a, "--env") && strcmp(a, "--env-mapping") && strcmp(a, "--env-intensity") &&
         strcmp(a, "--env-rotate") && strcmp(a, "--sky") && strcmp(a, "--sky-lux") &&
         strcmp(a, "--ground-albedo"))
         return false;
@@ -70,8 +67,6 @@ bool cli_env_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         *rc = IL_EXIT_USAGE;
         return true;
     }
-    if (sun)
-        return cli_sun_option(a, v, o, rc);
     if (!strcmp(a, "--env")) {
         o->file = v;
         return true;

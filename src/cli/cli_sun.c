@@ -9,12 +9,18 @@
 #include "cli/cli.h"
 #include "scene/sun.h"
 
-bool cli_sun_option(const char *a, const char *v, cli_env_options *o, int *rc)
+bool cli_sun_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
 {
+    const char *a = argv[*i];
     bool sun = !strcmp(a, "--sun"), time = !strcmp(a, "--sun-time"), lat = !strcmp(a, "--latitude"),
          lon = !strcmp(a, "--longitude"), north = !strcmp(a, "--north"), lux = !strcmp(a, "--sun-lux");
     if (!sun && !time && !lat && !lon && !north && !lux)
         return false;
+    const char *v = cli_value(argc, argv, i);
+    if (!v) {
+        *rc = IL_EXIT_USAGE;
+        return true;
+    }
     if (!o->first_sun_setting)
         o->first_sun_setting = a;
     bool ok = true;

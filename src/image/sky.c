@@ -117,7 +117,7 @@ il_vec3 il_sky_direction(double altitude, double azimuth, double north)
 bool il_sky_type_from_name(const char *name, int *type)
 {
     if (!strcmp(name, "overcast") || !strcmp(name, "clear")) {
-        *type = name[0] == 'c' ? 12 : 0;
+        *type = !strcmp(name, "clear") ? 12 : 0;
         return true;
     }
     if (strncmp(name, "cie:", 4) || !isdigit((unsigned char)name[4]))

@@ -2,8 +2,6 @@
  * environment, and its sun as a directional light that belongs to it: the
  * next il_scene_set_environment removes the sun with the sky
  * (docs/environment.md#skies). */
-#include <math.h>
-
 #include "core/color.h"
 #include "core/error.h"
 #include "image/sky.h"
