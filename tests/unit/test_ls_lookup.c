@@ -306,7 +306,7 @@ static void check_occlusion(const il_scene *s, uint32_t grid, uint32_t n, il_pcg
             }
         if (unsure)
             continue;
-        bool got = il_ls_occluded(&ls, s, x, w, m, t);
+        bool got = il_ls_occluded(&ls, s, x, w, m, t, NULL);
         tests++;
         blocked += want;
         bad += got != want;
@@ -354,7 +354,7 @@ static wave_counts compare_wave_lookup(const il_linespace *ls, const il_scene *s
             il_vec3 L1 = v3s(0.0f), L2 = v3s(0.0f);
             bool coarse = false;
             il_ls_lookup_status read = il_ls_lookup(ls, x, w, &L1, &coarse), want = read;
-            if (il_ls_tested(test, read == IL_LS_FOUND) && il_ls_occluded(ls, s, x, w, m, t))
+            if (il_ls_tested(test, read == IL_LS_FOUND) && il_ls_occluded(ls, s, x, w, m, t, NULL))
                 want = IL_LS_OCCLUDED;
             il_ls_probe pr;
             il_ls_probe_at(ls, x, w, &pr);

@@ -328,9 +328,10 @@ il_ls_lookup_status il_ls_lookup(const il_linespace *ls, il_vec3 p, il_vec3 w, i
 /* The in-shaft occlusion test: whether a triangle of the shaft's candidate
  * list (or, for an overflowing shaft, anything in the scene) lies on the
  * ray from org along w before it leaves org's voxel.  Skips triangle
- * (self_mesh, self_prim). */
+ * (self_mesh, self_prim).  *rays (when not NULL) counts the ray it casts
+ * for an overflowing shaft. */
 bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
-                    uint32_t self_mesh, uint32_t self_prim);
+                    uint32_t self_mesh, uint32_t self_prim, uint64_t *rays);
 /* il_ls_lookup at x and, as `test` says, il_ls_occluded from x, with
  * one walk, in three steps, each done for a whole wave of lookups before the next
  * (the sampling pass): il_ls_probe_at finds the voxel,

@@ -143,13 +143,15 @@ static inline bool blocks4(const il_ls_tri *tris, const uint8_t *idx, uint32_t c
  * org along w up to tmax. */
 static bool shaft_blocks(const il_linespace *ls, const il_scene *scene, const il_ls_rec *r, uint32_t voxel,
                          il_vec3 org, il_vec3 w, float eps, float tmax, uint32_t self_mesh,
-                         uint32_t self_prim)
+                         uint32_t self_prim, uint64_t *rays)
 {
     if (!(tmax > eps))
         return false;
     uint32_t info = r->info;
     if (info & IL_LS_REC_OVERFLOW) {
         il_ray ray = {.org = org, .tmin = eps, .dir = w, .tmax = tmax};
+        if (rays)
+            ++*rays;
         return il_trace_occluded(scene->tracer, &ray);
     }
     const il_ls_tri *tris = ls->tri + ls->tri_base[voxel];
@@ -177,7 +179,7 @@ static bool shaft_blocks(const il_linespace *ls, const il_scene *scene, const il
 }
 
 bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, il_vec3 w,
-                    uint32_t self_mesh, uint32_t self_prim)
+                    uint32_t self_mesh, uint32_t self_prim, uint64_t *rays)
 {
     float eps = 1e-4f * v3_max_comp(ls->vsize);
     uint32_t dir, voxel;
@@ -188,7 +190,7 @@ bool il_ls_occluded(const il_linespace *ls, const il_scene *scene, il_vec3 org, 
     /* Up to the voxel's face, short of it by eps (t_out is from org + eps
      * w): a wall lying in the face is where the shaft's light comes from,
      * not an occluder.  The same range as il_ls_read_probe's. */
-    return shaft_blocks(ls, scene, &ls->recs[slot], voxel, org, w, eps, t_out, self_mesh, self_prim);
+    return shaft_blocks(ls, scene, &ls->recs[slot], voxel, org, w, eps, t_out, self_mesh, self_prim, rays);
 }
 
 void il_ls_probe_at(const il_linespace *ls, il_vec3 x, il_vec3 w, il_ls_probe *pr)
@@ -256,7 +258,7 @@ il_ls_lookup_status il_ls_read_probe(const il_linespace *ls, const il_scene *sce
         *ray = (il_ray){.org = x, .tmin = eps, .dir = w, .tmax = tmax};
         return lit ? IL_LS_TRACE : IL_LS_TRACE_EMPTY;
     }
-    if (shaft_blocks(ls, scene, r, pr->voxel, x, w, eps, tmax, self_mesh, self_prim))
+    if (shaft_blocks(ls, scene, r, pr->voxel, x, w, eps, tmax, self_mesh, self_prim, NULL))
         return IL_LS_OCCLUDED;
     return open;
 }

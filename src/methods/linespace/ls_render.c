@@ -238,7 +238,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             il_ls_lookup_status r = il_ls_lookup(m->ls, q, bs.wi, &Li, &coarse);
             /* The occlusion test where m->test says (il_ls_read_probe). */
             if (il_ls_tested(m->test, r == IL_LS_FOUND) &&
-                il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim))
+                il_ls_occluded(m->ls, s, surf->p, bs.wi, surf->mesh, surf->prim, &p->rays))
                 r = IL_LS_OCCLUDED;
             return path_after_lookup(m, p, r, Li, coarse, cnt);
         }
@@ -386,13 +386,15 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
             il_ls_probe_slot(m->ls, m->test, &w->probe[k]);
         uint32_t num_tracing = 0;
         for (uint32_t k = 0; k < num_looking; k++) {
-            const ls_path *p = &w->path[w->looking[k]];
+            ls_path *p = &w->path[w->looking[k]];
             w->Li[k] = v3s(0.0f);
             w->status[k] = il_ls_read_probe(m->ls, m->scene, &w->probe[k], p->x, p->wi, m->test,
                                             p->self_mesh, p->self_prim, &w->Li[k],
                                             &w->occ_rays[num_tracing]);
-            if (w->status[k] == IL_LS_TRACE || w->status[k] == IL_LS_TRACE_EMPTY)
+            if (w->status[k] == IL_LS_TRACE || w->status[k] == IL_LS_TRACE_EMPTY) {
                 w->tracing[num_tracing++] = k;
+                p->rays++;
+            }
         }
         /* The occlusion tests of shafts without candidate lists, as one
          * stream. */
