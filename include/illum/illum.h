@@ -348,6 +348,11 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
  * sky, and il_scene_remove_lights leaves it.  The overcast sky has no sun:
  * a sun_normal_lux there is refused.  Before commit. */
 il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_error *err);
+/* Whether the scene's environment is still the sky il_scene_set_daylight
+ * set (a scene file's "environment": {"sky": ...} is set that way); *out,
+ * when not NULL, gets that sky as set, horizontal_lux and ground_albedo's
+ * defaults filled in. */
+bool il_scene_get_daylight(const il_scene *scene, il_sky_desc *out);
 
 /* Where the sun stands, seen from latitude and longitude (degrees, north and
  * east positive) at a moment given in seconds since 1970-01-01T00:00:00 UTC:

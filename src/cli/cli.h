@@ -289,8 +289,6 @@ typedef struct cli_env_options {
     bool has_latitude, has_longitude;
     double sun_lux;                  /* --sun-lux; has_sun_lux false: the IES model's */
     bool has_sun_lux;
-    bool sky_applied;                /* cli_env_apply set --sky: */
-    il_sky_desc applied;             /* ... as set, its sun placed (for --stats) */
 } cli_env_options;
 
 extern const char cli_env_help[];
@@ -306,10 +304,10 @@ int cli_env_check(const char *command, const cli_env_options *o);
  * returns its exit status.  Does nothing when o is NULL or asks for none
  * of this. */
 int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet);
-/* The sky --sky set, as "sky": {type, sky_lux, ground_albedo and, for a CIE
- * sky, sun_altitude, sun_azimuth, north, sun_normal_lux} in parent; nothing
- * without --sky. */
-void cli_sky_stats_json(struct cJSON *parent, const cli_env_options *o);
+/* The scene's daylight sky (--sky or the scene file's), as "sky": {type,
+ * sky_lux, ground_albedo and, for a CIE sky, sun_altitude, sun_azimuth,
+ * north, sun_normal_lux} in parent; nothing when it has none. */
+void cli_sky_stats_json(struct cJSON *parent, const il_scene *scene);
 
 /* The sun of a CIE sky (cli_sun.c, docs/environment.md#skies). */
 /* --sun, --sun-time, --latitude, --longitude, --north, --sun-lux, as

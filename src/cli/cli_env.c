@@ -162,8 +162,6 @@ int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet)
             cli_error("--sky: %s", err.message);
             return cli_exit_for(err.status);
         }
-        o->applied = sky;
-        o->sky_applied = true;
         return IL_EXIT_OK;
     }
     il_status st = il_image_read(o->file, &img, &err);
@@ -187,21 +185,21 @@ int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet)
     return IL_EXIT_OK;
 }
 
-void cli_sky_stats_json(struct cJSON *parent, const cli_env_options *o)
+void cli_sky_stats_json(struct cJSON *parent, const il_scene *scene)
 {
-    if (!o->sky_applied)
+    il_sky_desc d;
+    if (!il_scene_get_daylight(scene, &d))
         return;
-    const il_sky_desc *d = &o->applied;
     cJSON *sky = cJSON_AddObjectToObject(parent, "sky");
     char type[16];
-    snprintf(type, sizeof type, d->cie_type ? "cie:%d" : "overcast", d->cie_type);
+    snprintf(type, sizeof type, d.cie_type ? "cie:%d" : "overcast", d.cie_type);
     cJSON_AddStringToObject(sky, "type", type);
-    cJSON_AddNumberToObject(sky, "sky_lux", d->horizontal_lux > 0.0 ? d->horizontal_lux : 10000.0);
-    cJSON_AddNumberToObject(sky, "ground_albedo", d->ground_albedo == 0.0 ? 0.2 : fmax(d->ground_albedo, 0.0));
-    if (!d->cie_type)
+    cJSON_AddNumberToObject(sky, "sky_lux", d.horizontal_lux);
+    cJSON_AddNumberToObject(sky, "ground_albedo", fmax(d.ground_albedo, 0.0));
+    if (!d.cie_type)
         return;
-    cJSON_AddNumberToObject(sky, "sun_altitude", d->sun_altitude);
-    cJSON_AddNumberToObject(sky, "sun_azimuth", d->sun_azimuth);
-    cJSON_AddNumberToObject(sky, "north", d->north);
-    cJSON_AddNumberToObject(sky, "sun_normal_lux", d->sun_normal_lux);
+    cJSON_AddNumberToObject(sky, "sun_altitude", d.sun_altitude);
+    cJSON_AddNumberToObject(sky, "sun_azimuth", d.sun_azimuth);
+    cJSON_AddNumberToObject(sky, "north", d.north);
+    cJSON_AddNumberToObject(sky, "sun_normal_lux", d.sun_normal_lux);
 }

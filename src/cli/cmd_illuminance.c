@@ -264,10 +264,11 @@ static const char *lux_text(double v, char buf[32])
 typedef struct summary {
     size_t lo, hi, dark;             /* the sensors of the least and most lux; how many read 0 */
     double average, worst_rel;       /* lux; the largest standard error over its reading */
-    double outdoor;                  /* the overcast sky's lux when --sky-only, else 0 */
+    double outdoor;                  /* the overcast sky's lux when it is the only light, else 0 */
+    bool lamps_too;                  /* the overcast sky and other lights */
 } summary;
 
-static summary summarize(const options *o, const cli_sensor_grid *g, const il_illuminance *r)
+static summary summarize(const il_scene *scene, const cli_sensor_grid *g, const il_illuminance *r)
 {
     summary m = {0};
     double sum = 0.0;
@@ -280,8 +281,18 @@ static summary summarize(const options *o, const cli_sensor_grid *g, const il_il
             m.worst_rel = fmax(m.worst_rel, r[i].lux_error / r[i].lux);
     }
     m.average = sum / (double)g->count;
-    if (o->env.sky && o->env.sky_desc.cie_type == 0 && o->env.sky_only)
-        m.outdoor = o->env.sky_desc.horizontal_lux > 0.0 ? o->env.sky_desc.horizontal_lux : 10000.0;
+    /* The daylight factor needs the overcast sky (--sky overcast or the
+     * scene file's) as the only light: --sky-only, or a scene without
+     * lamps. */
+    il_sky_desc sky;
+    il_scene_info info;
+    il_scene_get_info(scene, &info);
+    if (il_scene_get_daylight(scene, &sky) && sky.cie_type == 0) {
+        if (info.num_lights == 0 && info.num_emissive_triangles == 0)
+            m.outdoor = sky.horizontal_lux;
+        else
+            m.lamps_too = true;
+    }
     return m;
 }
 
@@ -311,7 +322,7 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
     if (avg > 0.0)
         printf("uniformity  %.3f (minimum / average), %.3f (minimum / maximum)\n",
                (double)r[lo].lux / avg, r[hi].lux > 0.0f ? (double)r[lo].lux / r[hi].lux : 0.0);
-    if (o->env.sky && o->env.sky_desc.cie_type == 0 && !o->env.sky_only)
+    if (m->lamps_too)
         printf("daylight    the scene's own lights count too: --sky-only gives the daylight factor\n");
     if (m->outdoor > 0.0) {
         /* The daylight factor: indoor over unobstructed outdoor horizontal
@@ -342,7 +353,7 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
 }
 
 /* --stats: the run and the figures of the summary. */
-static int write_stats(const options *o, size_t sensors, const il_illuminance_stats *st,
+static int write_stats(const options *o, const il_scene *scene, size_t sensors, const il_illuminance_stats *st,
                        const il_illuminance *r, const summary *m, const cli_view_summary *v)
 {
     cJSON *j = cJSON_CreateObject();
@@ -378,7 +389,7 @@ static int write_stats(const options *o, size_t sensors, const il_illuminance_st
             cJSON_AddNumberToObject(df, "maximum", 100.0 * hi / m->outdoor);
         }
     }
-    cli_sky_stats_json(j, &o->env);
+    cli_sky_stats_json(j, scene);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
@@ -499,7 +510,7 @@ int cmd_illuminance(int argc, char **argv)
             rc = cli_view_finish(&view, &g, r, o.scale_max, o.outputs, o.num_outputs, st.samples,
                                  o.run_opts.quiet, &vs);
         } else {
-            sm = summarize(&o, &g, r);
+            sm = summarize(scene, &g, r);
             print_summary(&o, &g, r, &st, &sm);
         }
         if (!o.run_opts.quiet)
@@ -509,7 +520,7 @@ int cmd_illuminance(int argc, char **argv)
         for (int k = 0; !o.view && rc == IL_EXIT_OK && k < o.num_outputs; k++)
             rc = write_csv(o.outputs[k], &g, r);
         if (rc == IL_EXIT_OK && o.stats)
-            rc = write_stats(&o, g.count, &st, r, &sm, o.view ? &vs : NULL);
+            rc = write_stats(&o, scene, g.count, &st, r, &sm, o.view ? &vs : NULL);
         if (rc == IL_EXIT_OK && cli_interrupted)
             rc = IL_EXIT_INTERRUPTED;
     }

@@ -374,7 +374,7 @@ static bool write_stats(const render_options *o, const il_render_stats *rs, cons
         cli_linespace_stats_json(j, &rs->linespace);
     else if (o->desc.method == IL_METHOD_RSM)
         cli_rsm_stats_json(j, &o->m.rsm.desc, &rs->rsm);
-    cli_sky_stats_json(j, &o->env);
+    cli_sky_stats_json(j, scene);
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok;

@@ -44,12 +44,25 @@ static const unsigned char type_groups[15][2] = {
 
 /* The checks and defaults both skies share; `multiple` is what the width
  * must be a multiple of. */
+il_sky_desc il_sky_with_defaults(const il_sky_desc *desc)
+{
+    il_sky_desc d = desc ? *desc : (il_sky_desc){0};
+    if (d.horizontal_lux == 0.0)
+        d.horizontal_lux = 10000.0;
+    if (d.ground_albedo == 0.0)
+        d.ground_albedo = 0.2;
+    if (d.width == 0)
+        d.width = 256u;
+    return d;
+}
+
 static il_status sky_settings(const il_sky_desc *desc, il_image *out, uint32_t multiple,
                               double *lux, double *albedo, uint32_t *width, il_error *err)
 {
-    *lux = desc && desc->horizontal_lux != 0.0 ? desc->horizontal_lux : 10000.0;
-    *albedo = desc && desc->ground_albedo != 0.0 ? desc->ground_albedo : 0.2;
-    *width = desc && desc->width ? desc->width : 256u;
+    il_sky_desc d = il_sky_with_defaults(desc);
+    *lux = d.horizontal_lux;
+    *albedo = d.ground_albedo;
+    *width = d.width;
     if (!out)
         return il_fail(err, IL_ERR_INVALID, "sky: no output image");
     if (!(*lux > 0.0) || !isfinite(*lux))

@@ -15,4 +15,8 @@ il_vec3 il_sky_direction(double altitude, double azimuth, double north);
  * false for anything else. */
 bool il_sky_type_from_name(const char *name, int *type);
 
+/* desc with the defaults of its zero fields filled in: horizontal_lux
+ * 10,000, ground_albedo 0.2, width 256 (a zero desc when NULL). */
+il_sky_desc il_sky_with_defaults(const il_sky_desc *desc);
+
 #endif

@@ -18,8 +18,12 @@ il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_err
         return st;
     st = il_scene_set_environment(scene, &(il_environment_desc){.map = &sky, .mapping = IL_ENV_LATLONG}, err);
     il_image_free(&sky);
-    if (st != IL_OK || !(desc->sun_normal_lux > 0.0))
+    if (st != IL_OK)
         return st;
+    scene->has_daylight = true;
+    scene->daylight = il_sky_with_defaults(desc);
+    if (!(desc->sun_normal_lux > 0.0))
+        return IL_OK;
     /* il_sky_cie has checked the sun's position and illuminance. */
     il_vec3 towards = il_sky_direction(desc->sun_altitude, desc->sun_azimuth, desc->north);
     float e = (float)(desc->sun_normal_lux / IL_LUMENS_PER_WATT);
@@ -31,4 +35,13 @@ il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_err
     scene->has_sky_sun = true;
     scene->sky_sun = scene->num_user_lights - 1;
     return IL_OK;
+}
+
+bool il_scene_get_daylight(const il_scene *scene, il_sky_desc *out)
+{
+    if (!scene || !scene->has_daylight)
+        return false;
+    if (out)
+        *out = scene->daylight;
+    return true;
 }

@@ -353,8 +353,10 @@ static void free_envmap(il_scene *s)
 /* A map is copied (times its intensity) and its sampling tables are built
  * here, so that commit and rendering find them ready (image/envmap.h). */
 /* A new environment replaces the old one's sun too (il_scene_set_daylight). */
-static void drop_sky_sun(il_scene *s)
+/* The sky il_scene_set_daylight set is being replaced: its sun goes too. */
+static void drop_daylight(il_scene *s)
 {
+    s->has_daylight = false;
     if (!s->has_sky_sun)
         return;
     memmove(&s->user_lights[s->sky_sun], &s->user_lights[s->sky_sun + 1],
@@ -373,7 +375,7 @@ il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il
         return il_fail(err, IL_ERR_INVALID, "environment: radiance must be finite and >= 0");
     if (!d->map) {
         free_envmap(s);
-        drop_sky_sun(s);
+        drop_daylight(s);
         s->environment = *d;
         s->has_environment = !v3_is_zero(d->radiance);
         return IL_OK;
@@ -390,7 +392,7 @@ il_status il_scene_set_environment(il_scene *s, const il_environment_desc *d, il
         return st;
     }
     free_envmap(s);
-    drop_sky_sun(s);
+    drop_daylight(s);
     s->envmap = env;
     s->environment = *d;
     s->environment.map = NULL;

@@ -119,6 +119,8 @@ struct il_scene {
     bool has_sky_sun;       /* user_lights[sky_sun] is the sun il_scene_set_daylight added:
                                it goes with its sky when the environment is replaced */
     uint32_t sky_sun;
+    bool has_daylight;      /* the environment is the sky il_scene_set_daylight set: */
+    il_sky_desc daylight;   /* ... as set, defaults filled in */
     il_scene_camera camera;
     il_environment_desc environment; /* as given, but map is NULL (the map lives in envmap)
                                         and, with a map, radiance is its mean radiance */

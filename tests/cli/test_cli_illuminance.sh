@@ -186,6 +186,35 @@ expect_exit 0 "JSON sky, sky only" -- "$ILLUM" illuminance sunny.json --sky-only
 checks=$((checks + 1))
 awk -F, 'NR == 2 { d = $7 - 30000; exit !(d < 300 && d > -300) }' sunny.csv ||
     fail "sunny.csv: $(sed -n 2p sunny.csv), expected 30000 lx within 1%"
+expect_exit 0 "JSON sky, --stats" -- "$ILLUM" illuminance sunny.json --sky-only --plane y=0 \
+    --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 4 -q --stats sunny.json.stats
+for k in '"type":[[:space:]]*"cie:12"' '"sun_altitude":[[:space:]]*30' '"sun_azimuth":[[:space:]]*180' \
+         '"sun_normal_lux":[[:space:]]*40000' '"ground_albedo":[[:space:]]*0'; do
+    checks=$((checks + 1))
+    grep -q "$k" sunny.json.stats || fail "sunny.json.stats lacks $k"
+done
+# A JSON scene's own overcast sky gives the daylight factor where it is the
+# only light: with --sky-only, or in a scene without lamps.
+cat > cloudy.json <<'JSON'
+{"meshes": [{"shape": "quad", "size": 4}],
+ "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 10}],
+ "environment": {"sky": "overcast", "sky_lux": 20000}}
+JSON
+sed '/"lights"/d' cloudy.json > unlit.json
+expect_exit 0 "JSON overcast, sky only" -- "$ILLUM" illuminance cloudy.json --sky-only --plane y=0 \
+    --area -1,-1,1,1 --spacing 1 --samples 1024 --stats cloudy.stats
+expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% average" "JSON overcast: DF 100%"
+expect_stdout "(20000 lx outdoors)" "JSON overcast: its own sky's lux"
+for k in '"type":[[:space:]]*"overcast"' '"sky_lux":[[:space:]]*20000' '"outdoor_lux":[[:space:]]*20000'; do
+    checks=$((checks + 1))
+    grep -q "$k" cloudy.stats || fail "cloudy.stats lacks $k"
+done
+expect_exit 0 "JSON overcast, lamp on" -- "$ILLUM" illuminance cloudy.json --plane y=0 \
+    --area -1,-1,1,1 --spacing 1 --samples 64
+expect_stdout "--sky-only gives the daylight factor" "JSON overcast and lamp"
+expect_exit 0 "JSON overcast, no lamp" -- "$ILLUM" illuminance unlit.json --plane y=0 \
+    --area -1,-1,1,1 --spacing 1 --samples 1024
+expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% average" "JSON overcast alone: DF 100%"
 expect_exit 0 "JSON sky replaced" -- "$ILLUM" illuminance sunny.json --sky overcast --sky-only --plane y=0 \
     --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 1024 -o overcast.csv
 checks=$((checks + 1))

@@ -466,7 +466,16 @@ static void test_cie_sky_and_sun(void)
                          .sun_normal_lux = sun, .horizontal_lux = facing ? 1e-3 : 15000.0,
                          .ground_albedo = facing ? -1.0 : 0.0};
         CHECK_OK(il_scene_set_daylight(s, &d, &g_err), &g_err);
+        /* il_scene_get_daylight gives the sky back as set, defaults filled
+         * in; switching the lamps off keeps it. */
+        il_sky_desc got;
+        CHECK_OK(il_scene_remove_lights(s, &g_err), &g_err);
+        CHECK(il_scene_get_daylight(s, &got));
+        CHECK(got.cie_type == 12 && got.sun_altitude == alt && got.sun_azimuth == 200.0 && got.north == 30.0);
+        CHECK(got.sun_normal_lux == sun && got.horizontal_lux == d.horizontal_lux && got.width == 256u);
+        CHECK(got.ground_albedo == (facing ? -1.0 : 0.2));
         commit(s);
+        CHECK(il_scene_get_daylight(s, NULL));
         /* Azimuth 200 with north turned 30: 170 degrees clockwise from -z. */
         double a = 170.0 * PI_D / 180.0, h = alt * PI_D / 180.0;
         il_vec3 to_sun = v3((float)(cos(h) * sin(a)), (float)sin(h), (float)(-cos(h) * cos(a)));
@@ -492,6 +501,15 @@ static void test_cie_sky_and_sun(void)
     il_error err = {0};
     CHECK(il_scene_set_daylight(s, &(il_sky_desc){.sun_normal_lux = 100.0}, &err) == IL_ERR_INVALID);
     CHECK(il_scene_set_daylight(s, NULL, &err) == IL_ERR_INVALID);
+    CHECK(!il_scene_get_daylight(s, NULL) && !il_scene_get_daylight(NULL, NULL));
+    /* An overcast sky, then a uniform environment in its place: no
+     * daylight sky any more. */
+    il_sky_desc got = {0};
+    CHECK_OK(il_scene_set_daylight(s, &(il_sky_desc){.horizontal_lux = 5000.0}, &g_err), &g_err);
+    CHECK(il_scene_get_daylight(s, &got) && got.cie_type == 0 && got.horizontal_lux == 5000.0 &&
+          got.ground_albedo == 0.2);
+    CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = v3s(1.0f)}, &g_err), &g_err);
+    CHECK(!il_scene_get_daylight(s, &got));
     il_scene_release(s);
 }
 
