@@ -112,6 +112,9 @@ typedef struct il_light_desc {
     il_vec3 intensity;   /* POINT/SPOT: W/sr; DIRECTIONAL: W/m^2 */
     float spot_angle;    /* SPOT: cut-off half-angle in degrees; 0 means 45 */
     float spot_exponent; /* SPOT: falloff exponent n of cos^n; 0 means none */
+    float diameter;      /* DIRECTIONAL: the apparent diameter of its disc in degrees,
+                            0 to 90 (the sun: 0.533), which softens shadow edges;
+                            0 means a point: sharp shadows */
 } il_light_desc;
 
 /* How an environment map's texels cover the sphere of directions
@@ -336,6 +339,9 @@ typedef struct il_sky_desc {
     double north;            /* degrees; see above */
     double sun_normal_lux;   /* the sun's illuminance on a surface facing it (0: no
                                 direct sun); il_sun_normal_lux gives a model's value */
+    double sun_diameter;     /* the sun's disc in degrees, up to 90, which softens
+                                shadow edges: 0 means the sun's own 0.53, negative a
+                                point (sharp shadows) */
 } il_sky_desc;
 il_status il_sky_overcast(const il_sky_desc *desc, il_image *out, il_error *err);
 il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
@@ -343,7 +349,7 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err);
 /* Sets the sky of desc (cie_type 0: the overcast sky; 1-15: il_sky_cie) as
  * the scene's environment and, when sun_normal_lux > 0, adds the sun as a
  * directional light of that illuminance (W/m^2 = lux / 683) shining from
- * (sun_altitude, sun_azimuth).  The sun belongs to the sky: the next
+ * (sun_altitude, sun_azimuth), a disc of sun_diameter.  The sun belongs to the sky: the next
  * il_scene_set_environment or il_scene_set_daylight removes it with the
  * sky, and il_scene_remove_lights leaves it.  The overcast sky has no sun:
  * a sun_normal_lux there is refused.  Before commit. */

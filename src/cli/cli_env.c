@@ -43,6 +43,8 @@ const char cli_env_help[] =
     "                         seen from above (default 0: north -z, east +x)\n"
     "  --sun-lux E            the sun's illuminance facing it (default: the IES\n"
     "                         model for the sky type and altitude; 0: no sun)\n"
+    "  --sun-diameter DEG     the sun's disc, which softens shadow edges (default\n"
+    "                         0.533, the sun's own; 0: a point, sharp shadows)\n"
     "  --sky-only             light the scene by the sky alone (--env, --sky or the\n"
     "                         scene's own): its lights and emitters are switched\n"
     "                         off, a CIE sky's sun stays\n";
@@ -202,4 +204,5 @@ void cli_sky_stats_json(struct cJSON *parent, const il_scene *scene)
     cJSON_AddNumberToObject(sky, "sun_azimuth", d.sun_azimuth);
     cJSON_AddNumberToObject(sky, "north", d.north);
     cJSON_AddNumberToObject(sky, "sun_normal_lux", d.sun_normal_lux);
+    cJSON_AddNumberToObject(sky, "sun_diameter", d.sun_diameter > 0.0 ? d.sun_diameter : 0.0);
 }

@@ -1,6 +1,6 @@
 /* The sun of a CIE sky on the command line (docs/environment.md#skies):
  * --sun ALT,AZ, or --sun-time MOMENT with --latitude and --longitude;
- * --north, --sun-lux.  Shared by render, bake, view and illuminance
+ * --north, --sun-lux, --sun-diameter.  Shared by render, bake, view and illuminance
  * through cli_env_option. */
 #include <math.h>
 #include <stdio.h>
@@ -13,8 +13,9 @@ bool cli_sun_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
 {
     const char *a = argv[*i];
     bool sun = !strcmp(a, "--sun"), time = !strcmp(a, "--sun-time"), lat = !strcmp(a, "--latitude"),
-         lon = !strcmp(a, "--longitude"), north = !strcmp(a, "--north"), lux = !strcmp(a, "--sun-lux");
-    if (!sun && !time && !lat && !lon && !north && !lux)
+         lon = !strcmp(a, "--longitude"), north = !strcmp(a, "--north"), lux = !strcmp(a, "--sun-lux"),
+         diameter = !strcmp(a, "--sun-diameter");
+    if (!sun && !time && !lat && !lon && !north && !lux && !diameter)
         return false;
     const char *v = cli_value(argc, argv, i);
     if (!v) {
@@ -48,6 +49,11 @@ bool cli_sun_option(int argc, char **argv, int *i, cli_env_options *o, int *rc)
         o->has_longitude = true;
     } else if (north) {
         ok = cli_parse_double(a, v, -360.0, 360.0, &o->sky_desc.north);
+    } else if (diameter) {
+        /* 0 is a point here (the library's 0 is the sun's own size). */
+        double d = 0.0;
+        ok = cli_parse_double(a, v, 0.0, 90.0, &d);
+        o->sky_desc.sun_diameter = d > 0.0 ? d : -1.0;
     } else {
         ok = cli_parse_double(a, v, 0.0, 1e7, &o->sun_lux);
         o->has_sun_lux = true;

@@ -153,8 +153,11 @@ il_vec3 il_sample_uniform_sphere(il_vec2 u)
 /* pbrt-v4 A.5.4 SampleUniformCone: cos(theta) uniform in [cos_max, 1]. */
 il_vec3 il_sample_uniform_cone(il_vec2 u, float cos_max)
 {
-    float c = (1.0f - u.x) + u.x * cos_max;
-    float s = sqrtf(il_maxf(0.0f, 1.0f - c * c));
+    /* 1 - cos drawn directly and sin^2 = (1 - cos)(1 + cos): 1 - c^2 would
+     * cancel for a narrow cone (the sun's 1 - cos is 1e-5). */
+    float omc = u.x * (1.0f - cos_max);
+    float c = 1.0f - omc;
+    float s = sqrtf(il_maxf(0.0f, omc * (2.0f - omc)));
     float phi = 2.0f * IL_PI * u.y;
     return v3(s * cosf(phi), s * sinf(phi), c);
 }

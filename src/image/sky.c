@@ -53,6 +53,8 @@ il_sky_desc il_sky_with_defaults(const il_sky_desc *desc)
         d.ground_albedo = 0.2;
     if (d.width == 0)
         d.width = 256u;
+    if (d.sun_diameter == 0.0)
+        d.sun_diameter = IL_SUN_DIAMETER;
     return d;
 }
 
@@ -176,6 +178,8 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err)
         return il_fail(err, IL_ERR_INVALID, "sky: the sun's azimuth and north must be finite numbers of degrees");
     if (!(desc->sun_normal_lux >= 0.0) || !isfinite(desc->sun_normal_lux))
         return il_fail(err, IL_ERR_INVALID, "sky: the sun's illuminance must be 0 or a positive number of lux");
+    if (!(desc->sun_diameter <= 90.0) || !isfinite(desc->sun_diameter))
+        return il_fail(err, IL_ERR_INVALID, "sky: the sun's diameter must be at most 90 degrees (negative: a point)");
     uint32_t height = width / 2;
     st = il_image_alloc(out, width, height, err);
     if (st != IL_OK)

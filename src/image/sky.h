@@ -15,8 +15,13 @@ il_vec3 il_sky_direction(double altitude, double azimuth, double north);
  * false for anything else. */
 bool il_sky_type_from_name(const char *name, int *type);
 
+/* The sun's mean apparent diameter in degrees: 32 arc minutes (31.6' in
+ * early July to 32.7' in early January, with the earth's distance). */
+#define IL_SUN_DIAMETER 0.533
+
 /* desc with the defaults of its zero fields filled in: horizontal_lux
- * 10,000, ground_albedo 0.2, width 256 (a zero desc when NULL). */
+ * 10,000, ground_albedo 0.2, width 256, sun_diameter IL_SUN_DIAMETER (a
+ * zero desc when NULL). */
 il_sky_desc il_sky_with_defaults(const il_sky_desc *desc);
 
 #endif

@@ -50,7 +50,7 @@ typedef struct ilk_light {
     ilk_vec3 direction;    /* SPOT, DIRECTIONAL: unit, the way light travels */
     uint32_t tri;          /* AREA: index into tris */
     ilk_vec3 intensity;    /* POINT, SPOT: W/sr; DIRECTIONAL: irradiance W/m^2 */
-    float cos_cutoff;      /* SPOT */
+    float cos_cutoff;      /* SPOT; DIRECTIONAL: cos of its disc's angular radius (1: a point) */
     float spot_exponent;   /* SPOT */
     float pad[3];
 } ilk_light;
@@ -404,6 +404,13 @@ IL_DEVICE_INLINE ilk_vec3 ilk_direct(const ilk_scene *sc, const ilk_bsdf *b, ilk
         wi = ilk_scale(l->direction, -1.0f);
         Li = l->intensity;
         target = zero;
+        if (l->cos_cutoff < 1.0f) {
+            /* Across the light's disc, as il_directional_sample (scene/lights.c). */
+            float omc = u1 * (1.0f - l->cos_cutoff), c = 1.0f - omc;
+            float s = sqrtf(ilk_maxf(0.0f, omc * (2.0f - omc))), phi = 2.0f * ILK_PI * u2;
+            wi = ilk_normalize(ilk_from_local(wi, s * cosf(phi), s * sinf(phi), c));
+            Li = ilk_scale(Li, 2.0f / (1.0f + l->cos_cutoff));
+        }
     } else if (l->kind == ILK_LIGHT_ENVIRONMENT) {
         pdf = pmf * ilk_environment_sample(sc, u1, u2, &wi);
         if (!(pdf > 0.0f))

@@ -407,6 +407,11 @@ static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes
         put3(l->rad, k, il_environment_sample(s, in->u_light, &wi, &pdf_dir));
         put3(l->q0, k, wi);
         l->pmf[k] = r->pmf * pdf_dir;
+    } else if (r->kind == IL_LREC_DIRECTIONAL && r->cos_cutoff < 1.0f) {
+        /* il_light_sample_at's draw over the light's disc. */
+        float scale;
+        put3(l->q0, k, il_directional_sample(r->p0, r->cos_cutoff, in->u_light, &scale));
+        put3(l->rad, k, v3_scale(r->radiance, scale));
     }
     l->ux[k] = in->u_light.x;
     l->uy[k] = in->u_light.y;

@@ -101,12 +101,16 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], il_ligh
     case IL_LIGHTK_DIRECTIONAL: {
         /* A disk of the scene's bounding radius R facing the light, outside
          * the bounding sphere: pdf_A = 1/(pi R^2), power E pi R^2 (pbrt-v4
-         * 12.4, DistantLight::SampleLe). */
-        float r = s->scene_radius;
-        il_vec3 c = v3_fma(s->scene_center, l->direction, -r);
-        out->p = out->org = disk_point(c, l->direction, r, u_pos);
-        out->dir = l->direction;
-        out->power = v3_scale(l->intensity, IL_PI * r * r * inv_pmf);
+         * 12.4, DistantLight::SampleLe).  A light with a disc first draws
+         * the direction over it (il_directional_sample): the disk then
+         * faces that direction and the power is L Omega pi R^2, E pi R^2
+         * times its scale. */
+        float r = s->scene_radius, scale;
+        il_vec3 dir = v3_neg(il_directional_sample(v3_neg(l->direction), l->cos_cutoff, u_dir, &scale));
+        il_vec3 c = v3_fma(s->scene_center, dir, -r);
+        out->p = out->org = disk_point(c, dir, r, u_pos);
+        out->dir = dir;
+        out->power = v3_scale(l->intensity, IL_PI * r * r * scale * inv_pmf);
         break;
     }
     case IL_LIGHTK_AREA: {

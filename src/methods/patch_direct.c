@@ -11,7 +11,9 @@
  * pbrt-v4 chapter 12):
  *   point/spot:   E = I * profile * cos(theta) / d^2, profile for a spot
  *                 cos^n(angle to its axis), zero beyond the cut-off;
- *   directional:  E = E_light * cos(theta);
+ *   directional:  E = E_light * cos(theta), or for a light with a disc
+ *                 the mean over directions drawn across it
+ *                 (il_directional_sample), one per point;
  *   sky:          E = int L(w) cos dw = pi * mean of L over cosine-distributed
  *                 directions that escape the scene (pbrt-v4 A.5.3); with an
  *                 environment map, cosine and map-importance samples
@@ -63,8 +65,9 @@ static void patch_points(const il_vec3 *corners, uint32_t num_corners,
         weights[k] = total > 0.0f ? weights[k] / total : 1.0f / IL_DIRECT_POINTS;
 }
 
-/* Irradiance at p (unit normal n) from the scene's delta lights, with shadows. */
-static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n)
+/* Irradiance at p (unit normal n) from the scene's delta lights, with
+ * shadows; u: the direction across a directional light's disc. */
+static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_vec2 u)
 {
     il_vec3 e = v3s(0.0f);
     for (uint32_t l = 0; l < scene->num_lights; l++) {
@@ -95,7 +98,8 @@ static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n)
                 continue;
             e = v3_fma(e, light->intensity, scale);
         } else if (light->kind == IL_LIGHTK_DIRECTIONAL) {
-            il_vec3 wi = v3_neg(light->direction);
+            float scale;
+            il_vec3 wi = il_directional_sample(v3_neg(light->direction), light->cos_cutoff, u, &scale);
             float cos_n = v3_dot(n, wi);
             if (cos_n <= 0.0f)
                 continue;
@@ -103,7 +107,7 @@ static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n)
                           .tmax = INFINITY};
             if (il_trace_occluded(scene->tracer, &ray))
                 continue;
-            e = v3_fma(e, light->intensity, cos_n);
+            e = v3_fma(e, light->intensity, cos_n * scale);
         }
     }
     return e;
@@ -178,8 +182,17 @@ il_vec3 il_patch_direct_irradiance(const il_scene *scene, const il_vec3 *corners
     patch_points(corners, num_corners, points, weights);
     il_vec3 e = v3s(0.0f);
     if (delta) {
-        for (int k = 0; k < IL_DIRECT_POINTS; k++)
-            e = v3_fma(e, delta_irradiance(scene, points[k], n), weights[k]);
+        /* Directions across a directional light's disc: jittered 4 x 4
+         * strata, the stratum of point k permuted (5k mod 16) so that a
+         * row of points does not get a row of directions.  Its own stream:
+         * the sky's numbers stay as they were. */
+        il_pcg32 disc = il_pcg32_seed(il_hash_combine(seed, 0x73756e6469736373ull /* "sundiscs" */), stream);
+        for (int k = 0; k < IL_DIRECT_POINTS; k++) {
+            int st = (5 * k) % IL_DIRECT_POINTS;
+            float ux = ((float)(st % IL_DIRECT_GRID) + il_pcg32_float(&disc)) / IL_DIRECT_GRID;
+            float uy = ((float)(st / IL_DIRECT_GRID) + il_pcg32_float(&disc)) / IL_DIRECT_GRID;
+            e = v3_fma(e, delta_irradiance(scene, points[k], n, v2(ux, uy)), weights[k]);
+        }
     }
     if (sky && scene->envmap) {
         e = v3_add(e, sky_map_irradiance(scene, points, n, &rng));

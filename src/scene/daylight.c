@@ -27,9 +27,11 @@ il_status il_scene_set_daylight(il_scene *scene, const il_sky_desc *desc, il_err
     /* il_sky_cie has checked the sun's position and illuminance. */
     il_vec3 towards = il_sky_direction(desc->sun_altitude, desc->sun_azimuth, desc->north);
     float e = (float)(desc->sun_normal_lux / IL_LUMENS_PER_WATT);
+    double diameter = scene->daylight.sun_diameter;
     il_light_desc sun = {.type = IL_LIGHT_DIRECTIONAL,
                          .direction = {-towards.x, -towards.y, -towards.z},
-                         .intensity = {e, e, e}};
+                         .intensity = {e, e, e},
+                         .diameter = diameter > 0.0 ? (float)diameter : 0.0f};
     if ((st = il_scene_add_light(scene, &sun, err)) != IL_OK)
         return st;
     scene->has_sky_sun = true;

@@ -109,7 +109,7 @@ static il_light_rec light_rec(const il_scene *s, const il_light *l, float pmf)
                               .kind = IL_LREC_SPOT};
     case IL_LIGHTK_DIRECTIONAL: /* il_light_sample_at's wi, computed once */
         return (il_light_rec){.p0 = v3_neg(l->direction), .radiance = l->intensity, .pmf = pmf,
-                              .kind = IL_LREC_DIRECTIONAL};
+                              .cos_cutoff = l->cos_cutoff, .kind = IL_LREC_DIRECTIONAL};
     case IL_LIGHTK_ENVIRONMENT:
         return (il_light_rec){.pmf = pmf, .kind = IL_LREC_ENVIRONMENT};
     default:
@@ -173,6 +173,7 @@ il_status il_lights_build(il_scene *s, il_error *err)
         case IL_LIGHT_DIRECTIONAL:
         default:
             l.kind = IL_LIGHTK_DIRECTIONAL;
+            l.cos_cutoff = d->diameter > 0.0f ? cosf(0.5f * d->diameter * IL_PI / 180.0f) : 1.0f;
             l.power = power_directional(d->intensity, s->scene_radius);
             break;
         }
@@ -303,6 +304,19 @@ static bool aim_at(il_light_sample *out, il_vec3 p, il_vec3 q, float *dist2)
     return true;
 }
 
+il_vec3 il_directional_sample(il_vec3 towards, float cos_half, il_vec2 u, float *scale)
+{
+    *scale = 1.0f;
+    if (!(cos_half < 1.0f))
+        return towards;
+    /* A disc of angular radius a and uniform radiance L gives a surface
+     * facing it E = int L cos dw = L pi sin^2 a; drawn uniformly in its
+     * cone (pdf 1 / (2 pi (1 - cos a))), L cos / pdf = E cos 2 / (1 + cos a). */
+    *scale = 2.0f / (1.0f + cos_half);
+    il_frame f = il_frame_from_normal(towards);
+    return v3_normalize(il_frame_to_world(&f, il_sample_uniform_cone(u, cos_half)));
+}
+
 bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u, il_light_sample *out)
 {
     memset(out, 0, sizeof *out);
@@ -339,14 +353,17 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
         out->radiance = v3_scale(l->intensity, scale);
         return true;
     }
-    case IL_LIGHTK_DIRECTIONAL:
-        /* pbrt-v4 12.4: all light arrives from -direction. */
-        out->wi = v3_neg(l->direction);
+    case IL_LIGHTK_DIRECTIONAL: {
+        /* pbrt-v4 12.4: all light arrives from -direction, or from a
+         * direction of its disc. */
+        float scale;
+        out->wi = il_directional_sample(v3_neg(l->direction), l->cos_cutoff, u, &scale);
         out->dist = INFINITY;
-        out->radiance = l->intensity;
+        out->radiance = v3_scale(l->intensity, scale);
         out->pdf = pmf;
         out->delta = true;
         return true;
+    }
     case IL_LIGHTK_AREA: {
         /* Only the point and the normal of the surface: the light holds its
          * material's emission and sidedness (il_emitted_radiance's inputs). */

@@ -647,7 +647,7 @@ static il_status parse_mesh(jctx *c, const cJSON *mesh, const char *where)
 static il_status parse_light(jctx *c, const cJSON *l, const char *where)
 {
     static const char *const keys[] = {"type", "position", "direction", "intensity", "angle",
-                                       "exponent", NULL};
+                                       "exponent", "diameter", NULL};
     il_status s = expect_object(c, l, where);
     if (s != IL_OK)
         return s;
@@ -672,11 +672,16 @@ static il_status parse_light(jctx *c, const cJSON *l, const char *where)
         (s = get_vec3(c, l, "direction", where, false, &d.direction, NULL)) != IL_OK ||
         (s = get_colour(c, l, "intensity", where, &d.intensity)) != IL_OK ||
         (s = get_float_min(c, l, "angle", where, 0.0f, &d.spot_angle)) != IL_OK ||
-        (s = get_float_min(c, l, "exponent", where, 0.0f, &d.spot_exponent)) != IL_OK)
+        (s = get_float_min(c, l, "exponent", where, 0.0f, &d.spot_exponent)) != IL_OK ||
+        (s = get_float_min(c, l, "diameter", where, 0.0f, &d.diameter)) != IL_OK)
         return s;
     if (d.spot_angle > 180.0f) {
         child_key(w, where, "angle");
         return bad(c, w, "expected degrees in [0, 180]");
+    }
+    if (d.diameter > 90.0f || (d.diameter > 0.0f && d.type != IL_LIGHT_DIRECTIONAL)) {
+        child_key(w, where, "diameter");
+        return bad(c, w, "a directional light's disc: expected degrees in [0, 90]");
     }
     d.direction = v3_normalize(d.direction);
     if ((s = il_scene_add_light(c->scene, &d, c->err)) != IL_OK)
@@ -707,7 +712,7 @@ static il_status parse_camera(jctx *c, const cJSON *cam)
 
 /* "environment": {"sky": "overcast"|"clear"|"cie:N"} with "sky_lux",
  * "ground_albedo", and for a CIE sky its "sun": [altitude, azimuth] or
- * {"time", "latitude", "longitude"}, "north" and "sun_lux"
+ * {"time", "latitude", "longitude"}, "north", "sun_lux" and "sun_diameter"
  * (docs/environment.md#skies, il_scene_set_daylight). */
 static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
 {
@@ -717,14 +722,15 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
     if (cJSON_GetObjectItemCaseSensitive(env, "radiance") || cJSON_GetObjectItemCaseSensitive(env, "map"))
         return bad(c, "environment", "\"sky\" and \"radiance\" or \"map\" exclude each other");
     const cJSON *sun = cJSON_GetObjectItemCaseSensitive(env, "sun");
-    bool has_lux, has_albedo, has_north, has_sun_lux;
+    bool has_lux, has_albedo, has_north, has_sun_lux, has_diameter;
     double sun_lux = 0.0;
     int day = 0; /* of the year, for the sun model's season; 0 without a date */
     il_status s;
     if ((s = get_number(c, env, "sky_lux", "environment", &d.horizontal_lux, &has_lux)) != IL_OK ||
         (s = get_number(c, env, "ground_albedo", "environment", &d.ground_albedo, &has_albedo)) != IL_OK ||
         (s = get_number(c, env, "north", "environment", &d.north, &has_north)) != IL_OK ||
-        (s = get_number(c, env, "sun_lux", "environment", &sun_lux, &has_sun_lux)) != IL_OK)
+        (s = get_number(c, env, "sun_lux", "environment", &sun_lux, &has_sun_lux)) != IL_OK ||
+        (s = get_number(c, env, "sun_diameter", "environment", &d.sun_diameter, &has_diameter)) != IL_OK)
         return s;
     if (has_lux && !(d.horizontal_lux > 0.0))
         return bad(c, "environment.sky_lux", "expected a number of lux > 0");
@@ -734,9 +740,14 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
         d.ground_albedo = -1.0; /* 0 in the desc means the default 0.2 */
     if (has_sun_lux && !(sun_lux >= 0.0))
         return bad(c, "environment.sun_lux", "expected a number of lux >= 0");
+    if (has_diameter && !(d.sun_diameter >= 0.0 && d.sun_diameter <= 90.0))
+        return bad(c, "environment.sun_diameter", "expected a number of degrees from 0 (a point) to 90");
+    if (has_diameter && d.sun_diameter == 0.0)
+        d.sun_diameter = -1.0; /* 0 in the desc means the sun's own size */
     if (d.cie_type == 0) {
-        if (sun || has_north || has_sun_lux)
-            return bad(c, "environment", "the overcast sky has no \"sun\", \"north\" or \"sun_lux\"");
+        if (sun || has_north || has_sun_lux || has_diameter)
+            return bad(c, "environment", "the overcast sky has no \"sun\", \"north\", \"sun_lux\" or "
+                                         "\"sun_diameter\"");
     } else if (!sun) {
         return bad(c, "environment.sun", "a CIE sky needs its sun: [altitude, azimuth] or "
                                          "{\"time\", \"latitude\", \"longitude\"}");
@@ -780,7 +791,8 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
 static il_status parse_environment(jctx *c, const cJSON *env)
 {
     static const char *const keys[] = {"radiance", "map", "mapping", "rotation", "intensity", "sky",
-                                       "sky_lux", "ground_albedo", "sun", "north", "sun_lux", NULL};
+                                       "sky_lux", "ground_albedo", "sun", "north", "sun_lux",
+                                       "sun_diameter", NULL};
     il_status s = expect_object(c, env, "environment");
     if (s != IL_OK)
         return s;
@@ -790,11 +802,12 @@ static il_status parse_environment(jctx *c, const cJSON *env)
         return s;
     if (sky)
         return parse_sky(c, env, sky);
-    static const char *const sky_keys[] = {"sky_lux", "ground_albedo", "sun", "north", "sun_lux"};
+    static const char *const sky_keys[] = {"sky_lux", "ground_albedo", "sun", "north", "sun_lux",
+                                           "sun_diameter"};
     for (size_t k = 0; k < sizeof sky_keys / sizeof sky_keys[0]; k++)
         if (cJSON_GetObjectItemCaseSensitive(env, sky_keys[k]))
-            return bad(c, "environment", "\"sky_lux\", \"ground_albedo\", \"sun\", \"north\" and "
-                                         "\"sun_lux\" need a \"sky\"");
+            return bad(c, "environment", "\"sky_lux\", \"ground_albedo\", \"sun\", \"north\", "
+                                         "\"sun_lux\" and \"sun_diameter\" need a \"sky\"");
     il_environment_desc d = {0};
     const char *map = NULL, *mapping = NULL;
     double rotation = 0.0, intensity = 0.0;

@@ -285,6 +285,10 @@ il_status il_scene_add_light(il_scene *s, const il_light_desc *d, il_error *err)
         !isfinite(d->spot_exponent))
         return il_fail(err, IL_ERR_INVALID, "spot light: angle must be in [0, 180] degrees and the "
                                             "exponent >= 0");
+    if (!(d->diameter >= 0.0f && d->diameter <= 90.0f))
+        return il_fail(err, IL_ERR_INVALID, "directional light: the disc's diameter must be in [0, 90] degrees");
+    if (d->diameter > 0.0f && d->type != IL_LIGHT_DIRECTIONAL)
+        return il_fail(err, IL_ERR_INVALID, "light: only a directional light has a diameter");
     if (!grow((void **)&s->user_lights, &s->cap_user_lights, s->num_user_lights + 1,
               sizeof(il_light_desc), err))
         return IL_ERR_MEMORY;

@@ -73,7 +73,8 @@ typedef struct il_light {
     il_vec3 position;      /* POINT, SPOT */
     il_vec3 direction;     /* SPOT, DIRECTIONAL: unit, the way light travels */
     il_vec3 intensity;     /* POINT/SPOT W/sr; DIRECTIONAL W/m^2 */
-    float cos_cutoff;      /* SPOT: cos of the cut-off half-angle */
+    float cos_cutoff;      /* SPOT: cos of the cut-off half-angle; DIRECTIONAL: cos of its
+                              disc's angular radius (1: a point) */
     float spot_exponent;   /* SPOT */
     uint32_t mesh, prim;   /* AREA: the triangle */
     float area;            /* AREA: the triangle's area */
@@ -96,12 +97,13 @@ typedef enum il_lrec_kind {
 typedef struct il_light_rec {
     il_vec3 p0, p1, p2;    /* TRIANGLE: the vertices; POINT, SPOT: p0 the position;
                               SPOT: p1 the unit axis it shines along;
-                              DIRECTIONAL: p0 the unit direction towards the light */
+                              DIRECTIONAL: p0 the unit direction towards the light (its
+                              disc's centre) */
     il_vec3 ng;            /* TRIANGLE: the unit normal; else zero */
     il_vec3 radiance;      /* TRIANGLE: emitted radiance; POINT, SPOT: intensity; DIRECTIONAL:
                               irradiance (ENVIRONMENT: only pmf is used) */
     float area, pmf;       /* area: TRIANGLE */
-    float cos_cutoff, spot_exponent; /* SPOT: il_light's */
+    float cos_cutoff, spot_exponent; /* SPOT: il_light's; DIRECTIONAL: cos_cutoff as il_light's */
     bool two_sided;        /* TRIANGLE */
     il_lrec_kind kind;
 } il_light_rec;

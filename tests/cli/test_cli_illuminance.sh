@@ -169,7 +169,8 @@ expect_exit 0 "clear sky, --sun-time" -- "$ILLUM" illuminance lamp.json --sky ci
     --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 16 --stats sun.json
 expect_stderr "sun at 39.89 degrees altitude, 194.34 azimuth" "SPA's example"
 for k in '"type":[[:space:]]*"cie:12"' '"sun_altitude":[[:space:]]*39.89' '"sun_azimuth":[[:space:]]*194.33' \
-         '"north":[[:space:]]*30' '"sun_normal_lux":' '"sky_lux":[[:space:]]*10000'; do
+         '"north":[[:space:]]*30' '"sun_normal_lux":' '"sky_lux":[[:space:]]*10000' \
+         '"sun_diameter":[[:space:]]*0.533'; do
     checks=$((checks + 1))
     grep -q "$k" sun.json || fail "sun.json lacks $k"
 done
@@ -223,6 +224,16 @@ awk -F, 'NR == 2 { d = $7 - 10000; exit !(d < 100 && d > -100) }' overcast.csv |
 expect_exit 0 "render under a clear sky" -- "$ILLUM" render lamp.json --sky cie:7 --sun 45,90 --width 8 \
     --height 8 --spp 2 -q -o clear.pfm
 expect_file clear.pfm "render under a clear sky"
+# The sun's disc: --sun-diameter 0 is a point, beyond 90 is refused, and it
+# needs a CIE sky.
+expect_exit 0 "sharp sun" -- "$ILLUM" illuminance lamp.json --sky clear --sun 30,180 --sun-diameter 0 \
+    --plane y=0 --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 4 -q --stats sharp.json
+checks=$((checks + 1))
+grep -q '"sun_diameter":[[:space:]]*0$' sharp.json || fail "sharp.json: the sun is not a point"
+expect_exit 1 "sun diameter 100" -- "$ILLUM" illuminance lamp.json --sky clear --sun 30,180 \
+    --sun-diameter 100 --plane y=0 -o bad.csv
+expect_exit 2 "sun diameter, overcast" -- "$ILLUM" illuminance lamp.json --sky overcast --sun-diameter 1 \
+    --plane y=0 -o bad.csv
 expect_exit 1 "CIE type 16" -- "$ILLUM" illuminance lamp.json --sky cie:16 --sun 30,180 --plane y=0 -o bad.csv
 expect_exit 1 "CIE type x" -- "$ILLUM" illuminance lamp.json --sky cie:x --sun 30,180 --plane y=0 -o bad.csv
 expect_exit 1 "sun below the horizon" -- "$ILLUM" illuminance lamp.json --sky clear --plane y=0 -o bad.csv \

@@ -1,8 +1,9 @@
 /* il_diffuse_wave (methods/diffuse_wave.c) against the scalar code it
  * stands for, bit for bit: for thousands of vertices found by random rays
  * in scenes with one- and two-sided triangle lamps, a ball lamp with
- * authored normals, a point, a directional and three spot lights (with and
- * without a cos^n profile, one wider than a hemisphere), a sky, Lambertian,
+ * authored normals, a point, two directional (one with a disc) and three
+ * spot lights (with and without a cos^n profile, one wider than a
+ * hemisphere), a sky, Lambertian,
  * Phong (exponents 20 and 300) and mirror surfaces, its light sample must
  * equal il_pt_step_at's (under MIS) and il_direct_light_sample's (plain),
  * and its BSDF sample il_bsdf_sample_dir_cos's (a Phong surface's diffuse
@@ -188,8 +189,10 @@ static il_scene *mixed_room(void)
         {.type = IL_LIGHT_SPOT, .position = {1.2f, 1.7f, -0.5f}, .direction = {-0.4f, -1, 0.1f},
          .intensity = {2, 1, 1}, .spot_angle = 25.0f},
         {.type = IL_LIGHT_SPOT, .position = {0, 1.0f, 0.5f}, .direction = {0, 0, -1},
-         .intensity = {1, 1, 2}, .spot_angle = 120.0f, .spot_exponent = 2.0f}};
-    for (int i = 0; i < 5; i++)
+         .intensity = {1, 1, 2}, .spot_angle = 120.0f, .spot_exponent = 2.0f},
+        {.type = IL_LIGHT_DIRECTIONAL, .direction = {-0.2f, -1, -0.4f}, .intensity = {0.8f, 0.8f, 1},
+         .diameter = 6.0f}};
+    for (int i = 0; i < 6; i++)
         CHECK_OK(il_scene_add_light(s, &lights[i], &g_err), &g_err);
     il_environment_desc sky = {.radiance = v3(0.2f, 0.25f, 0.3f)}; /* seen through the open front */
     CHECK_OK(il_scene_set_environment(s, &sky, &g_err), &g_err);

@@ -284,8 +284,9 @@ static il_scene *small_scene(test_light kind)
         break;
     case GLASS_AND_MIRROR:
     case SUN_AND_SKY:
+        /* A sun with a wide disc: soft shadows, drawn across it. */
         l = (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = {-0.5f, -1.0f, -0.6f},
-                            .intensity = {3.0f, 2.8f, 2.5f}};
+                            .intensity = {3.0f, 2.8f, 2.5f}, .diameter = 8.0f};
         CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {0.2f, 0.3f, 0.5f}}, &err),
                  &err);
         break;

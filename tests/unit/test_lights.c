@@ -1,5 +1,6 @@
 /* The light table: power-proportional selection, light sampling and its
- * densities, spot falloff, emission sidedness, the no-light error. */
+ * densities, spot falloff, emission sidedness, the no-light error, a
+ * directional light's disc. */
 #include <string.h>
 
 #include "scene_build.h"
@@ -8,8 +9,69 @@
 
 static double lum(il_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+/* A directional light with a disc of diameter D: its directions lie within
+ * D/2 of its centre, uniform over the cap (the mean direction is the
+ * centre's times (1 + cos(D/2)) / 2), and the mean of radiance times the
+ * cosine is E cos, the irradiance of the point light it replaces, on any
+ * surface the disc is wholly above; a point (D = 0) gives the centre
+ * exactly.  Diameters outside [0, 90], or on another light, are refused. */
+static void test_disc(void)
+{
+    il_error err = {0};
+    const float diameters[] = {10.0f, 0.533f, 0.0f};
+    for (int k = 0; k < 3; k++) {
+        il_scene *s = NULL;
+        CHECK_OK(il_scene_create(&s, &err), &err);
+        add_quad(s, v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, -1), 0);
+        il_light_desc d = {.type = IL_LIGHT_DIRECTIONAL, .direction = {0.3f, -1, 0.2f}, .intensity = {2, 2, 2},
+                           .diameter = diameters[k]};
+        CHECK_OK(il_scene_add_light(s, &d, &err), &err);
+        CHECK_OK(il_scene_commit(s, &err), &err);
+        double half = 0.5 * diameters[k] * PI_D / 180.0;
+        il_vec3 axis = v3_normalize(v3(-0.3f, 1, -0.2f));
+        il_vec3 n = v3_normalize(v3(0.2f, 1, 0.4f)); /* the cap is well above this surface */
+        enum { G = 200 };
+        double sum_e = 0.0, sum_dir[3] = {0, 0, 0}, worst = 0.0;
+        for (int i = 0; i < G * G; i++) {
+            il_light_sample ls;
+            il_vec2 u = v2(((float)(i % G) + 0.5f) / G, ((float)(i / G) + 0.5f) / G);
+            CHECK(il_light_sample_at(s, v3(0, 0, 0), 0.5f, u, &ls));
+            double c = v3_dot(ls.wi, axis);
+            worst = fmax(worst, acos(fmin(1.0, c)));
+            sum_e += ls.radiance.x * v3_dot(ls.wi, n);
+            sum_dir[0] += ls.wi.x, sum_dir[1] += ls.wi.y, sum_dir[2] += ls.wi.z;
+            if (diameters[k] == 0.0f)
+                CHECK(ls.wi.x == axis.x && ls.wi.y == axis.y && ls.wi.z == axis.z && ls.radiance.x == 2.0f);
+        }
+        double mean_e = sum_e / (G * G), want = 2.0 * v3_dot(axis, n);
+        double shrink = (1.0 + cos(half)) / 2.0;
+        printf("disc %g deg: farthest %.5f deg (radius %.5f), mean E cos %.6f (expected %.6f)\n",
+               (double)diameters[k], worst * 180.0 / PI_D, half * 180.0 / PI_D, mean_e, want);
+        CHECK(worst <= half * 1.001 + 2e-4);
+        CHECK(worst >= half * 0.98);
+        CHECK_REL(mean_e, want, 1e-4);
+        CHECK_NEAR(sum_dir[0] / (G * G), axis.x * shrink, 2e-5);
+        CHECK_NEAR(sum_dir[1] / (G * G), axis.y * shrink, 2e-5);
+        CHECK_NEAR(sum_dir[2] / (G * G), axis.z * shrink, 2e-5);
+        il_scene_release(s);
+    }
+    il_scene *s = NULL;
+    CHECK_OK(il_scene_create(&s, &err), &err);
+    const il_light_desc bad[] = {
+        {.type = IL_LIGHT_DIRECTIONAL, .intensity = {1, 1, 1}, .diameter = 91.0f},
+        {.type = IL_LIGHT_DIRECTIONAL, .intensity = {1, 1, 1}, .diameter = -1.0f},
+        {.type = IL_LIGHT_DIRECTIONAL, .intensity = {1, 1, 1}, .diameter = NAN},
+        {.type = IL_LIGHT_POINT, .intensity = {1, 1, 1}, .diameter = 5.0f}};
+    for (int k = 0; k < 4; k++) {
+        CHECK(il_scene_add_light(s, &bad[k], &err) == IL_ERR_INVALID);
+        printf("bad disc %d: %s\n", k, err.message);
+    }
+    il_scene_release(s);
+}
+
 int main(void)
 {
+    test_disc();
     il_error err = {0};
 
     /* No light at all: a clear error. */

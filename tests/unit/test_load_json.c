@@ -105,7 +105,7 @@ static void test_full_scene(void)
         "  {\"type\": \"point\", \"position\": [1, 2, 3], \"intensity\": 7},\n"
         "  {\"type\": \"spot\", \"position\": [0, 4, 0], \"direction\": [0, -2, 0], \"intensity\": [1, 2, 3],\n"
         "   \"angle\": 25, \"exponent\": 8},\n"
-        "  {\"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": [3, 3, 3]}\n"
+        "  {\"type\": \"directional\", \"direction\": [0, 0, -1], \"intensity\": [3, 3, 3], \"diameter\": 2.5}\n"
         "],\n"
         "\"camera\": {\"position\": [0, 1, 8], \"target\": [0, 1, 0], \"up\": [0, 1, 0], \"fov\": 35},\n"
         "\"environment\": {\"radiance\": [0.1, 0.2, 0.3]},\n"
@@ -192,7 +192,8 @@ static void test_full_scene(void)
     CHECK(l[1].type == IL_LIGHT_SPOT && l[1].spot_angle == 25.0f && l[1].spot_exponent == 8.0f);
     CHECK_NEAR(l[1].direction.y, -1.0, 0); /* normalised */
     CHECK(l[1].intensity.y == 2.0f);
-    CHECK(l[2].type == IL_LIGHT_DIRECTIONAL && l[2].direction.z == -1.0f);
+    CHECK(l[2].type == IL_LIGHT_DIRECTIONAL && l[2].direction.z == -1.0f && l[2].diameter == 2.5f);
+    CHECK(l[0].diameter == 0.0f && l[1].diameter == 0.0f);
 
     il_camera_desc c;
     CHECK(il_scene_get_camera(s, &c));
@@ -362,7 +363,19 @@ static void test_errors(void)
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"map\":\"a.hdr\"}}",
          IL_ERR_FORMAT, "bad.json: environment: \"sky\" and \"radiance\" or \"map\" exclude each other"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"radiance\":1,\"sky_lux\":5}}",
-         IL_ERR_FORMAT, "bad.json: environment: \"sky_lux\", \"ground_albedo\", \"sun\", \"north\" and \"sun_lux\" need a \"sky\""},
+         IL_ERR_FORMAT, "bad.json: environment: \"sky_lux\", \"ground_albedo\", \"sun\", \"north\", \"sun_lux\" and \"sun_diameter\" need a \"sky\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"radiance\":1,\"sun_diameter\":1}}",
+         IL_ERR_FORMAT, "need a \"sky\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"overcast\",\"sun_diameter\":1}}",
+         IL_ERR_FORMAT, "bad.json: environment: the overcast sky has no \"sun\", \"north\", \"sun_lux\" or \"sun_diameter\""},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30,180],\"sun_diameter\":91}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun_diameter: expected a number of degrees from 0 (a point) to 90"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30,180],\"sun_diameter\":-1}}",
+         IL_ERR_FORMAT, "bad.json: environment.sun_diameter: expected a number of degrees from 0 (a point) to 90"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"lights\":[{\"type\":\"point\",\"diameter\":1}]}",
+         IL_ERR_FORMAT, "bad.json: lights[0].diameter: a directional light's disc: expected degrees in [0, 90]"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"lights\":[{\"type\":\"directional\",\"diameter\":95}]}",
+         IL_ERR_FORMAT, "bad.json: lights[0].diameter: a directional light's disc: expected degrees in [0, 90]"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"cie:7\",\"sun\":[-3,180]}}",
          IL_ERR_FORMAT, "bad.json: environment.sun: the altitude must be above the horizon"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\",\"sun\":[30]}}",
@@ -486,6 +499,23 @@ static void test_sky(void)
     CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {1, 1, 1}}, &err), &err);
     CHECK(s->num_user_lights == 1 && s->user_lights[0].type == IL_LIGHT_POINT);
     il_scene_release(s);
+    /* The sun's disc: its own 0.533 degrees by default, "sun_diameter" in
+     * degrees, 0 a point. */
+    s = load_json_ok("sky.json", sky_json);
+    CHECK(s->user_lights[1].diameter == 0.533f);
+    il_scene_release(s);
+    const double diameters[] = {2.0, 0.0};
+    for (int k = 0; k < 2; k++) {
+        char text[256];
+        snprintf(text, sizeof text,
+                 "{\"meshes\": [{\"shape\": \"quad\"}], \"environment\": {\"sky\": \"clear\", "
+                 "\"sun\": [30, 180], \"sun_diameter\": %g}}", diameters[k]);
+        s = load_json_ok("disc.json", text);
+        CHECK(s->num_user_lights == 1 && s->user_lights[0].diameter == (float)diameters[k]);
+        il_sky_desc got;
+        CHECK(il_scene_get_daylight(s, &got) && got.sun_diameter == (k ? -1.0 : 2.0));
+        il_scene_release(s);
+    }
     /* Switching the scene's own lights off leaves the sky's sun. */
     s = load_json_ok("sky.json", sky_json);
     CHECK_OK(il_scene_remove_lights(s, &err), &err);

@@ -229,6 +229,40 @@ static void test_directional(void)
     il_scene_release(s);
 }
 
+/* Directional with a disc of diameter D (half-angle a): directions
+ * uniform over its cap (mean cos (1 + cos a) / 2), each photon's power
+ * E pi R^2 2 / (1 + cos a) = L Omega pi R^2 for the disc's radiance
+ * L = E / (pi sin^2 a); every origin on a disk of radius R facing its own
+ * direction, outside the bounding sphere, so a quarter of the photons
+ * still pass within R/2 of the centre. */
+static void test_directional_disc(void)
+{
+    il_scene *s = new_scene();
+    add_ground(s);
+    il_vec3 dir = v3_normalize(v3(1, -2, 0.5f));
+    add_light(s, (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = dir,
+                                 .intensity = v3(1, 2, 0.5f), .diameter = 20.0f});
+    commit(s);
+    double r = s->scene_radius, a = 10.0 * PI_D / 180.0;
+    stats st = run(s, dir, (float)cos(a), s->scene_center, (float)(0.5 * r));
+    CHECK(st.failed == 0);
+    CHECK(st.outside == 0);
+    CHECK_REL(st.power[0], PI_D * r * r * 2.0 / (1.0 + cos(a)), 1e-4);
+    CHECK_NEAR(st.mean_cos, (1.0 + cos(a)) / 2.0, 2e-4);
+    CHECK_NEAR(st.frac_near, 0.25, 0.004);
+    il_pcg32 rng = il_pcg32_seed(9, 9);
+    uint32_t bad = 0;
+    for (int i = 0; i < 10000; i++) {
+        il_light_emission e;
+        emit(s, &rng, &e);
+        il_vec3 d = v3_sub(e.org, s->scene_center);
+        if (fabs(v3_dot(d, e.dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
+            bad++;
+    }
+    CHECK(bad == 0);
+    il_scene_release(s);
+}
+
 /* Environment: uniform directions, power 4 pi^2 R^2 L (lights.c), and the
  * flux through a sphere of radius R/2 is L 4 pi pi (R/2)^2: a quarter. */
 static void test_environment(void)
@@ -296,6 +330,7 @@ int main(void)
     test_area(false);
     test_area(true);
     test_directional();
+    test_directional_disc();
     test_environment();
     test_split();
     return check_report();

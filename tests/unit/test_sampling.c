@@ -359,6 +359,19 @@ static void test_pdf_values(void)
         if (d.z < 0.9f - 1e-6f) outside++;
     }
     CHECK(outside == 0);
+    /* A cone as narrow as the sun's (0.2665 degrees): sin and 1 - cos of
+     * each direction as in double, not after cancellation in 1 - c^2. */
+    float cos_sun = cosf(0.2665f * (float)PI_D / 180.0f);
+    double worst = 0.0;
+    for (int i = 0; i < 10000; i++) {
+        il_vec2 u = v2(il_pcg32_float(&rng), il_pcg32_float(&rng));
+        il_vec3 d = il_sample_uniform_cone(u, cos_sun);
+        double omc = (double)u.x * (1.0 - (double)cos_sun), s = sqrt(omc * (2.0 - omc));
+        if (s > 1e-4)
+            worst = fmax(worst, fabs(hypot(d.x, d.y) - s) / s);
+    }
+    printf("sun-sized cone: sin within %.2g of double\n", worst);
+    CHECK(worst < 1e-4);
 }
 
 /* il_sample_cosine_hemisphere_n (eight lanes of AVX2 where the CPU has it)

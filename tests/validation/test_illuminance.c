@@ -2,6 +2,10 @@
  * - a point light: E = I cos(theta) / d^2 (the inverse-square cosine law);
  * - a spot light: the same times its cos^n profile, zero outside its cone;
  * - a directional light: E = E0 cos(theta);
+ * - a directional light with a disc (the sun's soft shadow): under the
+ *   edge of a black half-plane, the fraction of the disc's irradiance
+ *   that passes it, integrated over the disc by quadrature (the penumbra's
+ *   profile, half at the edge);
  * - a square emitter of radiance L above the sensor: E = pi L F, F the
  *   point-to-parallel-rectangle form factor (Howell's catalogue, B-3:
  *   F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2)
@@ -107,6 +111,52 @@ static void test_directional(void)
     measure(s, sn, 2, (il_illuminance_desc){.samples = 64}, r, NULL);
     check_reading("sun, horizontal sensor", &r[0], v3_scale(E0, (float)(1.0 / sqrt(2.0))), 1e-4);
     check_reading("sun, facing it", &r[1], E0, 1e-4);
+    il_scene_release(s);
+}
+
+/* The irradiance at (x, 0, 0), facing up, from a disc of angular radius a
+ * about the zenith and radiance E / (pi sin^2 a), past a black half-plane
+ * x < 0 at height h: the blocked directions reach y = h at x + h tan < 0.
+ * As a fraction of E, by the midpoint rule over the cap (cos-weighted). */
+static double disc_fraction(double x, double h, double a)
+{
+    enum { NA = 600, NP = 1200 };
+    double sum = 0.0;
+    for (int i = 0; i < NA; i++) {
+        double al = (i + 0.5) * a / NA, w = cos(al) * sin(al) * (a / NA) * (2.0 * PI_D / NP);
+        for (int j = 0; j < NP; j++) {
+            double ph = (j + 0.5) * 2.0 * PI_D / NP;
+            if (x + h * sin(al) * cos(ph) / cos(al) >= 0.0)
+                sum += w;
+        }
+    }
+    return sum / (PI_D * sin(a) * sin(a));
+}
+
+static void test_disc_penumbra(void)
+{
+    const double h = 1.0, half = 5.0 * PI_D / 180.0, E0 = 100.0;
+    il_scene *s = new_scene();
+    uint32_t black = add_material(s, (il_material_desc){.diffuse = v3s(0.0f)});
+    add_quad(s, v3(-20, (float)h, 0), v3(20, 0, 0), v3(0, 0, -40), black); /* x in [-40, 0] */
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = v3(0, -1, 0),
+                                                    .intensity = v3s((float)E0), .diameter = 10.0f},
+                                &g_err), &g_err);
+    commit(s);
+    const double beta[] = {-7.0, -4.0, -2.5, -1.0, 0.0, 1.0, 2.5, 4.0, 7.0}; /* degrees off the edge */
+    enum { K = sizeof beta / sizeof beta[0] };
+    il_sensor sn[K];
+    for (int k = 0; k < K; k++)
+        sn[k] = (il_sensor){v3((float)(h * tan(beta[k] * PI_D / 180.0)), 0, 0), v3(0, 1, 0)};
+    il_illuminance r[K];
+    measure(s, sn, K, (il_illuminance_desc){.samples = 16384, .seed = 3}, r, NULL);
+    for (int k = 0; k < K; k++) {
+        double want = disc_fraction(sn[k].position.x, h, half), got = r[k].irradiance.x / E0;
+        printf("penumbra at %+.1f deg: %.4f of the full sun (disc quadrature %.4f)\n", beta[k], got, want);
+        CHECK_NEAR(got, want, 0.005);
+    }
+    CHECK(r[0].irradiance.x == 0.0f);
+    CHECK_REL(r[K - 1].irradiance.x, E0, 1e-4);
     il_scene_release(s);
 }
 
@@ -520,6 +570,7 @@ int main(void)
     test_camera_sensors();
     test_point_and_spot();
     test_directional();
+    test_disc_penumbra();
     test_area_light();
     test_furnace_and_threads();
     test_against_path_tracer();
