@@ -1,7 +1,7 @@
 /* The sun of a CIE sky on the command line (docs/environment.md#skies):
  * --sun ALT,AZ, or --sun-time MOMENT with --latitude and --longitude;
- * --north, --sun-lux, --sun-diameter.  Shared by render, bake, view and illuminance
- * through cli_env_option. */
+ * --north, --sun-lux, --sun-diameter.  Shared by render, bake, view and
+ * illuminance through cli_env_option. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -42,8 +42,6 @@ static const unsigned char type_groups[15][2] = {
     {1, 1}, {1, 2}, {2, 1}, {2, 2}, {3, 1}, {3, 2}, {3, 3}, {3, 4},
     {4, 2}, {4, 3}, {4, 4}, {5, 4}, {5, 5}, {6, 5}, {6, 6}};
 
-/* The checks and defaults both skies share; `multiple` is what the width
- * must be a multiple of. */
 il_sky_desc il_sky_with_defaults(const il_sky_desc *desc)
 {
     il_sky_desc d = desc ? *desc : (il_sky_desc){0};
@@ -58,6 +56,8 @@ il_sky_desc il_sky_with_defaults(const il_sky_desc *desc)
     return d;
 }
 
+/* The checks and defaults both skies share; `multiple` is what the width
+ * must be a multiple of. */
 static il_status sky_settings(const il_sky_desc *desc, il_image *out, uint32_t multiple,
                               double *lux, double *albedo, uint32_t *width, il_error *err)
 {

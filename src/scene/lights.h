@@ -28,12 +28,12 @@ void il_lights_free(il_scene *scene);
  * by power, through the selection CDF. */
 uint32_t il_light_select(const il_scene *scene, float u_select);
 /* A directional light's direction for the pair u: `towards` (unit, to the
- * centre of its disc) for a point light (cos_half 1), else uniform over its
- * disc of angular radius acos(cos_half).  *scale: what its irradiance
+ * centre of its disc) when it has no disc (cos_half 1), else uniform over
+ * its disc of angular radius acos(cos_half).  *scale: what its irradiance
  * (W/m^2 facing it) is multiplied by to be the sample's radiance in
  * il_light_sample's delta convention (E cos, no pdf but the selection),
- * 1 for a point: the mean over the disc is exactly E cos for a surface no
- * part of the disc is below. */
+ * 1 without a disc: the mean over the disc is exactly E cos for a surface
+ * no part of the disc is below. */
 il_vec3 il_directional_sample(il_vec3 towards, float cos_half, il_vec2 u, float *scale);
 /* Samples a light seen from point p: u_select picks the light, u a point on it. */
 bool il_light_sample_at(const il_scene *scene, il_vec3 p, float u_select, il_vec2 u,
