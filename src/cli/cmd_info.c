@@ -1,4 +1,5 @@
 /* `illum info SCENE`: what was loaded. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -61,6 +62,19 @@ int cmd_info(int argc, char **argv)
     printf("textures:   %u\n", in.num_textures);
     printf("lights:     %u point/spot/directional, %llu emissive triangles%s\n", in.num_lights,
            (unsigned long long)in.num_emissive_triangles, in.has_environment ? ", environment" : "");
+    il_sky_desc sky;
+    if (il_scene_get_daylight(scene, &sky)) {
+        if (sky.cie_type == 0)
+            printf("sky:        CIE overcast, %g lx horizontal\n", sky.horizontal_lux);
+        else if (sky.sun_normal_lux > 0.0) {
+            double azimuth = fmod(sky.sun_azimuth, 360.0);
+            printf("sky:        CIE type %d, %g lx horizontal; sun at %.2f altitude, %.2f azimuth (north %g), "
+                   "%.0f lx normal, %g degrees across\n",
+                   sky.cie_type, sky.horizontal_lux, sky.sun_altitude, azimuth < 0.0 ? azimuth + 360.0 : azimuth,
+                   sky.north, sky.sun_normal_lux, sky.sun_diameter > 0.0 ? sky.sun_diameter : 0.0);
+        } else
+            printf("sky:        CIE type %d, %g lx horizontal; no direct sun\n", sky.cie_type, sky.horizontal_lux);
+    }
     printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", (double)in.bounds_min.x,
            (double)in.bounds_min.y, (double)in.bounds_min.z, (double)in.bounds_max.x,
            (double)in.bounds_max.y, (double)in.bounds_max.z);

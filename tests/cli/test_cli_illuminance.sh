@@ -182,6 +182,9 @@ cat > sunny.json <<'JSON'
  "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 10}],
  "environment": {"sky": "clear", "sun": [30, 180], "sun_lux": 40000, "ground_albedo": 0}}
 JSON
+expect_exit 0 "info, JSON sky" -- "$ILLUM" info sunny.json
+expect_stdout "^sky:        CIE type 12, 10000 lx horizontal; sun at 30.00 altitude, 180.00 azimuth (north 0), 40000 lx normal, 0.533 degrees across" \
+    "info shows the sky and its sun"
 expect_exit 0 "JSON sky, sky only" -- "$ILLUM" illuminance sunny.json --sky-only --plane y=0 \
     --area -0.5,-0.5,0.5,0.5 --spacing 1 --samples 4096 -o sunny.csv
 checks=$((checks + 1))
@@ -202,6 +205,8 @@ cat > cloudy.json <<'JSON'
  "environment": {"sky": "overcast", "sky_lux": 20000}}
 JSON
 sed '/"lights"/d' cloudy.json > unlit.json
+expect_exit 0 "info, JSON overcast" -- "$ILLUM" info cloudy.json
+expect_stdout "^sky:        CIE overcast, 20000 lx horizontal" "info shows the overcast sky"
 expect_exit 0 "JSON overcast, sky only" -- "$ILLUM" illuminance cloudy.json --sky-only --plane y=0 \
     --area -1,-1,1,1 --spacing 1 --samples 1024 --stats cloudy.stats
 expect_stdout "daylight    factor 99.[5-9]% average\|daylight    factor 100% average" "JSON overcast: DF 100%"
