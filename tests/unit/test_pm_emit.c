@@ -198,6 +198,24 @@ static void test_area(bool two_sided)
     il_scene_release(s);
 }
 
+/* Of 10,000 photons of a directional light, those whose origin is not on
+ * the disk of radius R facing their direction outside the bounding
+ * sphere. */
+static uint32_t origins_off_disk(const il_scene *s)
+{
+    double r = s->scene_radius;
+    il_pcg32 rng = il_pcg32_seed(9, 9);
+    uint32_t bad = 0;
+    for (int i = 0; i < 10000; i++) {
+        il_light_emission e;
+        emit(s, &rng, &e);
+        il_vec3 d = v3_sub(e.org, s->scene_center);
+        if (fabs(v3_dot(d, e.dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
+            bad++;
+    }
+    return bad;
+}
+
 /* Directional: a disk of radius R, so a quarter of the photons pass within
  * R/2 of the centre; power E pi R^2. */
 static void test_directional(void)
@@ -215,17 +233,7 @@ static void test_directional(void)
     CHECK_REL(st.power[0], 1 * PI_D * r * r, 1e-4);
     CHECK_REL(st.power[1], 2 * PI_D * r * r, 1e-4);
     CHECK_NEAR(st.frac_near, 0.25, 0.004);
-    /* Every origin is on the disk outside the bounding sphere. */
-    il_pcg32 rng = il_pcg32_seed(9, 9);
-    uint32_t bad = 0;
-    for (int i = 0; i < 10000; i++) {
-        il_light_emission e;
-        emit(s, &rng, &e);
-        il_vec3 d = v3_sub(e.org, s->scene_center);
-        if (fabs(v3_dot(d, dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
-            bad++;
-    }
-    CHECK(bad == 0);
+    CHECK(origins_off_disk(s) == 0);
     il_scene_release(s);
 }
 
@@ -250,16 +258,7 @@ static void test_directional_disc(void)
     CHECK_REL(st.power[0], PI_D * r * r * 2.0 / (1.0 + cos(a)), 1e-4);
     CHECK_NEAR(st.mean_cos, (1.0 + cos(a)) / 2.0, 2e-4);
     CHECK_NEAR(st.frac_near, 0.25, 0.004);
-    il_pcg32 rng = il_pcg32_seed(9, 9);
-    uint32_t bad = 0;
-    for (int i = 0; i < 10000; i++) {
-        il_light_emission e;
-        emit(s, &rng, &e);
-        il_vec3 d = v3_sub(e.org, s->scene_center);
-        if (fabs(v3_dot(d, e.dir) + r) > 1e-4 * r || v3_length(d) > 1.4143 * r)
-            bad++;
-    }
-    CHECK(bad == 0);
+    CHECK(origins_off_disk(s) == 0);
     il_scene_release(s);
 }
 
