@@ -985,6 +985,37 @@ il_status il_measure_illuminance(const il_scene *scene, const il_sensor *sensors
                                  const il_illuminance_desc *desc, il_illuminance *out,
                                  il_illuminance_stats *stats, il_error *err);
 
+/* Hours of direct sun (docs/illuminance.md#sun-hours): for each sensor, how
+ * long, within the period from `start` lasting `hours`, the sun's centre
+ * stands above min_altitude, in front of the sensor (on the side its normal
+ * faces) and unhidden by the scene, as seen from latitude and longitude
+ * (il_sun_position, north turned as in il_sky_desc).  The period is cut into
+ * steps of step_minutes, each counted whole when the sun is seen at its
+ * middle.  No weather: a cloudless day, as the sunlight-exposure checks of
+ * EN 17037 and BR 209 assume.  The scene need not be committed nor have a
+ * light. */
+typedef struct il_sun_hours_desc {
+    double latitude, longitude; /* degrees, north and east positive */
+    double start;            /* seconds since 1970-01-01T00:00Z (il_parse_moment's) */
+    double hours;            /* length of the period, up to a year; 0 means 24 */
+    double step_minutes;     /* 0 means 1; at most 60 */
+    double min_altitude;     /* degrees, 0 to 90: the sun counts only above it */
+    double north;            /* degrees, as il_sky_desc.north */
+    int threads;             /* 0 means all cores */
+} il_sun_hours_desc;
+
+typedef struct il_sun_hours_stats {
+    double sun_up_hours;     /* hours of the period the sun stood above min_altitude:
+                                what a sensor facing it with nothing around gets */
+    uint64_t rays;
+    double seconds;
+} il_sun_hours_stats;
+
+/* hours[i]: sensor i's hours of sun.  Deterministic.  stats may be NULL. */
+il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t count,
+                       const il_sun_hours_desc *desc, double *hours, il_sun_hours_stats *stats,
+                       il_error *err);
+
 /* The sensors the scene's camera sees in a width x height image (a false-colour
  * illuminance view): for each pixel, row by row from the top, the surface
  * point at the centre of its view, facing the camera (the shading normal,

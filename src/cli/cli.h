@@ -472,6 +472,7 @@ int cli_view_finish(const cli_view *view, const cli_sensor_grid *g, const il_ill
                     uint32_t samples, bool quiet, cli_view_summary *sum);
 
 int cmd_illuminance(int argc, char **argv);
+int cmd_sunhours(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);
 int cmd_info(int argc, char **argv);

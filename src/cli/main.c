@@ -20,6 +20,8 @@ static const char *usage =
     "                           light-meter readings in lux on a work plane, at points,\n"
     "                           over named surfaces, or in false colour on what the\n"
     "                           camera sees\n"
+    "  sunhours SCENE --plane y=H | --points FILE --from T --latitude D --longitude D\n"
+    "                           hours of direct sun on a plane or at points over a day\n"
     "  info SCENE               print what a scene contains\n"
     "  compare A B [--diff D]   compare two images (RMSE, relative MSE, luminance)\n"
     "  envmap convert IN OUT --to latlong|angular|cross\n"
@@ -53,6 +55,7 @@ int main(int argc, char **argv)
             if (!strcmp(argv[2], "render")) return cmd_render(2, sub);
             if (!strcmp(argv[2], "info")) return cmd_info(2, sub);
             if (!strcmp(argv[2], "illuminance")) return cmd_illuminance(2, sub);
+            if (!strcmp(argv[2], "sunhours")) return cmd_sunhours(2, sub);
             if (!strcmp(argv[2], "compare")) return cmd_compare(2, sub);
             if (!strcmp(argv[2], "bake")) return cmd_bake(2, sub);
             if (!strcmp(argv[2], "envmap")) return cmd_envmap(2, sub);
@@ -74,6 +77,8 @@ int main(int argc, char **argv)
         return cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "illuminance"))
         return cmd_illuminance(argc - 1, argv + 1);
+    if (!strcmp(cmd, "sunhours"))
+        return cmd_sunhours(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare"))
         return cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "bake"))

@@ -1,0 +1,127 @@
+/* il_sun_hours: how long the sun shines on each sensor over a period
+ * (docs/illuminance.md#sun-hours).  The sun's places are found once, at
+ * the middle of every step it stands above the minimum altitude; then each
+ * sensor casts a shadow ray towards each place in front of it. */
+#include <math.h>
+#include <stdlib.h>
+
+#include <omp.h>
+
+#include "core/error.h"
+#include "image/sky.h"
+#include "illum/illum.h"
+#include "scene/scene.h"
+#include "trace/trace.h"
+
+/* The longest period: a leap year. */
+#define MAX_HOURS (366.0 * 24.0)
+
+static il_status check(const il_scene *scene, const il_sensor *sensors, size_t count,
+                       const il_sun_hours_desc *d, double *hours, il_error *err)
+{
+    if (!scene || !d || (count > 0 && (!sensors || !hours)))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: scene, sensors, options and output are required");
+    if (!(d->latitude >= -90.0 && d->latitude <= 90.0) || !(d->longitude >= -180.0 && d->longitude <= 180.0))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: latitude must be -90 to 90 and longitude -180 to 180 degrees");
+    if (!isfinite(d->start))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: the start must be a finite number of seconds");
+    if (!(d->hours >= 0.0 && d->hours <= MAX_HOURS))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: the period must be 0 to %g hours (a leap year)", MAX_HOURS);
+    if (!(d->step_minutes >= 0.0 && d->step_minutes <= 60.0))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: the step must be 0 to 60 minutes");
+    if (!(d->min_altitude >= 0.0 && d->min_altitude < 90.0))
+        return il_fail(err, IL_ERR_INVALID, "sun hours: the minimum altitude must be at least 0 and below 90 degrees");
+    if (!isfinite(d->north) || fabs(d->north) > 1e6)
+        return il_fail(err, IL_ERR_INVALID, "sun hours: north must be a finite number of degrees");
+    for (size_t i = 0; i < count; i++) {
+        il_vec3 p = sensors[i].position, n = sensors[i].normal;
+        if (!v3_is_finite(p) || !v3_is_finite(n))
+            return il_fail(err, IL_ERR_INVALID, "sun hours: sensor %zu has a NaN or infinite coordinate", i);
+        if (!(v3_length(n) > 0.0f))
+            return il_fail(err, IL_ERR_INVALID, "sun hours: sensor %zu has a zero normal", i);
+    }
+    return IL_OK;
+}
+
+il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t count,
+                       const il_sun_hours_desc *desc, double *hours, il_sun_hours_stats *stats,
+                       il_error *err)
+{
+    il_sun_hours_stats local = {0};
+    if (!stats)
+        stats = &local;
+    *stats = (il_sun_hours_stats){0};
+    il_status st = check(scene, sensors, count, desc, hours, err);
+    if (st != IL_OK)
+        return st;
+    double t0 = omp_get_wtime();
+    double period = desc->hours > 0.0 ? desc->hours : 24.0;
+    double step = desc->step_minutes > 0.0 ? desc->step_minutes : 1.0;
+    size_t steps = (size_t)ceil(period * 60.0 / step - 1e-9);
+    /* The last step may be shorter: it ends with the period. */
+    double last = period * 60.0 - (double)(steps - 1) * step;
+
+    /* Where the sun stands at the middle of each step, while above the
+     * minimum altitude, and how many minutes the step holds. */
+    il_vec3 *towards = malloc((steps ? steps : 1) * sizeof *towards);
+    double *minutes = malloc((steps ? steps : 1) * sizeof *minutes);
+    if (!towards || !minutes) {
+        free(towards);
+        free(minutes);
+        return il_fail(err, IL_ERR_MEMORY, "sun hours: out of memory for %zu steps", steps);
+    }
+    size_t up = 0;
+    double up_minutes = 0.0;
+    for (size_t k = 0; k < steps; k++) {
+        double len = k + 1 == steps ? last : step;
+        double alt, az;
+        st = il_sun_position(desc->latitude, desc->longitude, desc->start + 60.0 * ((double)k * step + 0.5 * len),
+                             &alt, &az, err);
+        if (st != IL_OK) {
+            free(towards);
+            free(minutes);
+            return st;
+        }
+        if (alt > desc->min_altitude) {
+            towards[up] = il_sky_direction(alt, az, desc->north);
+            minutes[up++] = len;
+            up_minutes += len; /* summed as a sensor's minutes are */
+        }
+    }
+
+    /* A committed scene has its tracer; else one is built for this call. */
+    il_tracer *own = NULL;
+    const il_tracer *tracer = scene->tracer;
+    if (!tracer) {
+        if ((st = il_tracer_create(scene, &own, err)) != IL_OK) {
+            free(towards);
+            free(minutes);
+            return st;
+        }
+        tracer = own;
+    }
+    uint64_t rays = 0;
+    int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : rays)
+    for (size_t i = 0; i < count; i++) {
+        il_vec3 p = sensors[i].position, n = v3_normalize(sensors[i].normal);
+        double sum = 0.0;
+        for (size_t k = 0; k < up; k++) {
+            if (!(v3_dot(n, towards[k]) > 0.0f))
+                continue;
+            il_ray ray = {.org = il_offset_origin(tracer, p, n, towards[k]), .tmin = 0.0f,
+                          .dir = towards[k], .tmax = INFINITY};
+            rays++;
+            if (!il_trace_occluded(tracer, &ray))
+                sum += minutes[k];
+        }
+        hours[i] = sum / 60.0;
+    }
+    il_tracer_release(own);
+    free(towards);
+    free(minutes);
+    stats->sun_up_hours = up_minutes / 60.0;
+    stats->rays = rays;
+    stats->seconds = omp_get_wtime() - t0;
+    return IL_OK;
+}
