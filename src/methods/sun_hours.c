@@ -13,8 +13,10 @@
 #include "scene/scene.h"
 #include "trace/trace.h"
 
-/* The longest period: a leap year. */
+/* The longest period: a leap year; the most steps: a leap year of minutes
+ * ten times over (the sun's places take 20 bytes a step). */
 #define MAX_HOURS (366.0 * 24.0)
+#define MAX_STEPS 5270400.0
 
 static il_status check(const il_scene *scene, const il_sensor *sensors, size_t count,
                        const il_sun_hours_desc *d, double *hours, il_error *err)
@@ -29,6 +31,10 @@ static il_status check(const il_scene *scene, const il_sensor *sensors, size_t c
         return il_fail(err, IL_ERR_INVALID, "sun hours: the period must be 0 to %g hours (a leap year)", MAX_HOURS);
     if (!(d->step_minutes >= 0.0 && d->step_minutes <= 60.0))
         return il_fail(err, IL_ERR_INVALID, "sun hours: the step must be 0 to 60 minutes");
+    double period = d->hours > 0.0 ? d->hours : 24.0, step = d->step_minutes > 0.0 ? d->step_minutes : 1.0;
+    if (period * 60.0 / step > MAX_STEPS)
+        return il_fail(err, IL_ERR_INVALID, "sun hours: %.0f steps of %g minutes are more than %.0f; take longer steps",
+                       ceil(period * 60.0 / step), step, MAX_STEPS);
     if (!(d->min_altitude >= 0.0 && d->min_altitude < 90.0))
         return il_fail(err, IL_ERR_INVALID, "sun hours: the minimum altitude must be at least 0 and below 90 degrees");
     if (!isfinite(d->north) || fabs(d->north) > 1e6)

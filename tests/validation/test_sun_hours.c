@@ -110,13 +110,15 @@ int main(void)
 
     /* Bad input. */
     il_sensor bad_sensor[2] = {{v3(0, 0, 0), v3(0, 0, 0)}, {v3(NAN, 0, 0), up}};
-    il_sun_hours_desc bad[] = {day, day, day, day, day, day};
+    il_sun_hours_desc bad[] = {day, day, day, day, day, day, day};
     bad[0].step_minutes = 61.0;
     bad[1].hours = -1.0;
     bad[2].latitude = 91.0;
     bad[3].min_altitude = 90.0;
     bad[4].start = -3e9; /* 1874 */
     bad[5].north = INFINITY;
+    bad[6].hours = 8784.0; /* a leap year in steps of 0.001 minutes: too many */
+    bad[6].step_minutes = 0.001;
     double h;
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         CHECK(il_sun_hours(open, &grid[0], 1, &bad[k], &h, NULL, &err) == IL_ERR_INVALID);
