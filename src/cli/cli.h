@@ -422,6 +422,8 @@ float cli_axis_coord(il_vec3 v, int axis);
 /* The axis (0 x, 1 y, 2 z; -1: none) that s starts with, after an optional
  * sign ("-y": 1, sign -1); *rest points past it. */
 int cli_signed_axis(const char *s, float *sign, const char **rest);
+/* --area "A0,B0,A1,B1": the second corner beyond the first in both. */
+bool cli_parse_area(const char *opt, const char *s, double area[4]);
 /* "y=0.85" (facing +y) or "-y=2.4" (facing -y). */
 bool cli_parse_plane(const char *opt, const char *s, cli_plane *out);
 /* The plane's area within the bounds lo..hi, inset by margin: {min0, min1,
@@ -430,6 +432,22 @@ void cli_plane_area(const cli_plane *plane, il_vec3 lo, il_vec3 hi, double margi
 /* A sensor at the centre of every cell of the plane's area: cells of about
  * `spacing` (0: EN 12464-1's largest cell for the area).  Prints the error. */
 int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing, cli_sensor_grid *g);
+/* Where sensors go on a plane or at a file's points: --plane, --area,
+ * --margin, --spacing and --points (illuminance and sunhours). */
+typedef struct cli_sensor_place {
+    const char *points;
+    bool has_plane, has_area;
+    cli_plane plane;
+    double area[4], margin, spacing;
+} cli_sensor_place;
+/* Option a with value v, when it is one of those (*ok: v was good). */
+bool cli_sensor_place_option(const char *a, const char *v, cli_sensor_place *p, bool *ok);
+/* The grid of --plane over --area, inset by the margin, or over the
+ * scene's bounds (p->area is then filled in), as cli_plane_grid. */
+int cli_plane_sensors(const il_scene *scene, cli_sensor_place *p, cli_sensor_grid *g);
+/* The first line of a summary: a plane's grid ("N sensors on y = 0.8
+ * facing +y: ...") or a file's points ("N sensors from FILE"). */
+void cli_print_sensors(const cli_sensor_grid *g, const cli_sensor_place *p);
 /* The sensors of a text file: one 'x y z [nx ny nz]' a line (normal +y when
  * omitted), '#' comments, an optional header line.  Prints the error. */
 int cli_read_sensors(const char *path, cli_sensor_grid *g);

@@ -125,6 +125,63 @@ void cli_plane_area(const cli_plane *plane, il_vec3 lo, il_vec3 hi, double margi
     area[3] = cli_axis_coord(hi, a1) - margin;
 }
 
+bool cli_parse_area(const char *opt, const char *s, double area[4])
+{
+    if (!cli_parse_numbers(opt, s, 4, "four numbers A0,B0,A1,B1", area))
+        return false;
+    if (!(area[2] > area[0] && area[3] > area[1])) {
+        cli_error("%s: the second corner must be beyond the first in both coordinates, got '%s'", opt, s);
+        return false;
+    }
+    return true;
+}
+
+bool cli_sensor_place_option(const char *a, const char *v, cli_sensor_place *p, bool *ok)
+{
+    if (!strcmp(a, "--plane")) {
+        *ok = cli_parse_plane(a, v, &p->plane);
+        p->has_plane = true;
+    } else if (!strcmp(a, "--area")) {
+        *ok = cli_parse_area(a, v, p->area);
+        p->has_area = true;
+    } else if (!strcmp(a, "--margin")) {
+        *ok = cli_parse_double(a, v, 0.0, 1e6, &p->margin);
+    } else if (!strcmp(a, "--spacing")) {
+        *ok = cli_parse_double(a, v, 1e-4, 1e6, &p->spacing);
+    } else if (!strcmp(a, "--points")) {
+        p->points = v;
+        *ok = true;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+int cli_plane_sensors(const il_scene *scene, cli_sensor_place *p, cli_sensor_grid *g)
+{
+    if (!p->has_area) {
+        il_scene_info in;
+        il_scene_get_info(scene, &in);
+        cli_plane_area(&p->plane, in.bounds_min, in.bounds_max, p->margin, p->area);
+    } else {
+        p->area[0] += p->margin, p->area[1] += p->margin;
+        p->area[2] -= p->margin, p->area[3] -= p->margin;
+    }
+    return cli_plane_grid(&p->plane, p->area, p->spacing, g);
+}
+
+void cli_print_sensors(const cli_sensor_grid *g, const cli_sensor_place *p)
+{
+    static const char names[] = "xyz";
+    const cli_plane *plane = &p->plane;
+    if (g->cols)
+        printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
+               names[plane->axis], (double)plane->value, plane->sign > 0 ? '+' : '-', names[plane->axis],
+               g->cols, g->rows, g->cell[0], g->cell[1]);
+    else
+        printf("%zu sensors from %s\n", g->count, p->points);
+}
+
 /* Up to 6 numbers of one line, separated by commas, spaces or tabs. */
 static int parse_numbers(char *line, double v[6], bool *junk)
 {

@@ -55,12 +55,12 @@ static const char *help =
 #define MAX_OUTPUTS 4
 
 typedef struct options {
-    const char *scene, *points, *stats, *surface;
+    const char *scene, *stats, *surface;
     const char *outputs[MAX_OUTPUTS];
     int num_outputs;
-    bool has_plane, has_area, view;
-    cli_plane plane;
-    double area[4], margin, spacing, scale_max;
+    bool view;
+    cli_sensor_place place;
+    double scale_max;
     uint32_t width, height;
     cli_camera_options camera;
     il_illuminance_desc desc;
@@ -88,18 +88,6 @@ static bool parse_direction(const char *opt, const char *s, il_vec3 *out)
         return false;
     }
     return true;
-}
-
-static int parse_area(const char *opt, const char *s, double area[4])
-{
-    if (!cli_parse_numbers(opt, s, 4, "four numbers A0,B0,A1,B1", area))
-        return IL_EXIT_BAD_INPUT;
-    if (!(area[2] > area[0] && area[3] > area[1])) {
-        cli_error("%s: the second corner must be beyond the first in both coordinates, got '%s'",
-                  opt, s);
-        return IL_EXIT_BAD_INPUT;
-    }
-    return IL_EXIT_OK;
 }
 
 /* The options of this command (not the shared ones) that take a value. */
@@ -145,19 +133,8 @@ static int parse_options(int argc, char **argv, options *o)
         if (!(v = cli_value(argc, argv, &i)))
             return IL_EXIT_USAGE;
         bool ok = true;
-        if (!strcmp(a, "--plane")) {
-            ok = cli_parse_plane(a, v, &o->plane);
-            o->has_plane = true;
-        } else if (!strcmp(a, "--area")) {
-            if (parse_area(a, v, o->area) != IL_EXIT_OK)
-                return IL_EXIT_BAD_INPUT;
-            o->has_area = true;
-        } else if (!strcmp(a, "--margin")) {
-            ok = cli_parse_double(a, v, 0.0, 1e6, &o->margin);
-        } else if (!strcmp(a, "--spacing")) {
-            ok = cli_parse_double(a, v, 1e-4, 1e6, &o->spacing);
-        } else if (!strcmp(a, "--points")) {
-            o->points = v;
+        if (cli_sensor_place_option(a, v, &o->place, &ok)) {
+            /* --plane, --area, --margin, --spacing, --points */
         } else if (!strcmp(a, "--stats")) {
             o->stats = v;
         } else if (!strcmp(a, "--surface")) {
@@ -185,16 +162,16 @@ static int parse_options(int argc, char **argv, options *o)
     }
     if (cli_require_scene("illuminance", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    if (o->has_plane + (o->points != NULL) + (o->surface != NULL) + o->view != 1) {
+    if (o->place.has_plane + (o->place.points != NULL) + (o->surface != NULL) + o->view != 1) {
         cli_error("illuminance: give one of --plane AXIS=VALUE, --points FILE, --surface NAME and "
                   "--view (see 'illum illuminance --help')");
         return IL_EXIT_USAGE;
     }
-    if (!o->has_plane && (o->has_area || o->margin > 0.0)) {
+    if (!o->place.has_plane && (o->place.has_area || o->place.margin > 0.0)) {
         cli_error("illuminance: --area and --margin shape a --plane grid");
         return IL_EXIT_USAGE;
     }
-    if (!o->has_plane && !o->surface && o->spacing > 0.0) {
+    if (!o->place.has_plane && !o->surface && o->place.spacing > 0.0) {
         cli_error("illuminance: --spacing goes with --plane or --surface");
         return IL_EXIT_USAGE;
     }
@@ -302,16 +279,12 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const il_i
     static const char names[] = "xyz";
     size_t lo = m->lo, hi = m->hi, dark = m->dark;
     double avg = m->average, worst_rel = m->worst_rel;
-    if (g->cols)
-        printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
-               names[o->plane.axis], (double)o->plane.value, o->plane.sign > 0 ? '+' : '-',
-               names[o->plane.axis], g->cols, g->rows, g->cell[0], g->cell[1]);
-    else if (o->surface)
+    if (o->surface)
         printf("%zu sensors on '%s': %llu triangles, %.4g m^2, one sensor per %.3g m^2\n", g->count,
                o->surface, (unsigned long long)o->surface_info.triangles, o->surface_info.area,
                o->surface_info.area / (double)g->count);
     else
-        printf("%zu sensors from %s\n", g->count, o->points);
+        cli_print_sensors(g, &o->place);
     il_vec3 pl = g->sensors[lo].position, ph = g->sensors[hi].position;
     char b[32];
     printf("average     %s lx\n", lux_text(avg, b));
@@ -358,7 +331,7 @@ static int write_stats(const options *o, const il_scene *scene, size_t sensors, 
 {
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "mode", o->view ? "view" : o->points ? "points" : o->surface ? "surface" : "plane");
+    cJSON_AddStringToObject(j, "mode", o->view ? "view" : o->place.points ? "points" : o->surface ? "surface" : "plane");
     cJSON_AddNumberToObject(j, "sensors", (double)sensors);
     cJSON_AddNumberToObject(j, "samples", st->samples);
     cJSON_AddNumberToObject(j, "max_depth", o->desc.max_depth ? o->desc.max_depth : 8);
@@ -398,7 +371,7 @@ static int write_stats(const options *o, const il_scene *scene, size_t sensors, 
 /* --surface: counted first, then placed. */
 static int surface_sensors(options *o, const il_scene *scene, cli_sensor_grid *g)
 {
-    il_surface_sensor_desc d = {.name = o->surface, .facing = o->facing, .spacing = (float)o->spacing};
+    il_surface_sensor_desc d = {.name = o->surface, .facing = o->facing, .spacing = (float)o->place.spacing};
     il_error err = {0};
     il_status st = il_surface_sensors(scene, &d, NULL, 0, &o->surface_info, &err);
     if (st == IL_OK && o->surface_info.count > CLI_MAX_SENSORS) {
@@ -429,8 +402,8 @@ static int surface_sensors(options *o, const il_scene *scene, cli_sensor_grid *g
  * (view->pixel_of set). */
 static int make_sensors(options *o, il_scene *scene, cli_sensor_grid *g, cli_view *view)
 {
-    if (o->points)
-        return cli_read_sensors(o->points, g);
+    if (o->place.points)
+        return cli_read_sensors(o->place.points, g);
     if (o->surface)
         return surface_sensors(o, scene, g);
     if (o->view) {
@@ -440,15 +413,7 @@ static int make_sensors(options *o, il_scene *scene, cli_sensor_grid *g, cli_vie
         return cli_view_sensors(scene, o->width ? o->width : 512, o->height ? o->height : 512, g,
                                 view);
     }
-    if (!o->has_area) {
-        il_scene_info in;
-        il_scene_get_info(scene, &in);
-        cli_plane_area(&o->plane, in.bounds_min, in.bounds_max, o->margin, o->area);
-    } else {
-        o->area[0] += o->margin, o->area[1] += o->margin;
-        o->area[2] -= o->margin, o->area[3] -= o->margin;
-    }
-    return cli_plane_grid(&o->plane, o->area, o->spacing, g);
+    return cli_plane_sensors(scene, &o->place, g);
 }
 
 int cmd_illuminance(int argc, char **argv)

@@ -1,6 +1,5 @@
 /* `illum sunhours SCENE`: hours of direct sun on a plane or at points over
  * a period, a cloudless day by default (docs/illuminance.md#sun-hours). */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,10 +41,10 @@ static const char *help =
     "  -o OUT.csv             every sensor: x,y,z,nx,ny,nz,sun_hours\n";
 
 typedef struct options {
-    const char *scene, *points, *stats, *output, *from;
-    bool has_plane, has_area, has_lat, has_lon, quiet;
-    cli_plane plane;
-    double area[4], margin, spacing, at_least;
+    const char *scene, *stats, *output, *from;
+    bool has_lat, has_lon, quiet;
+    cli_sensor_place place;
+    double at_least;
     il_sun_hours_desc desc;
 } options;
 
@@ -65,22 +64,8 @@ static int parse_value(const char *a, const char *v, options *o)
 {
     bool ok = true;
     uint32_t threads = 0;
-    if (!strcmp(a, "--plane")) {
-        ok = cli_parse_plane(a, v, &o->plane);
-        o->has_plane = true;
-    } else if (!strcmp(a, "--area")) {
-        ok = cli_parse_numbers(a, v, 4, "four numbers A0,B0,A1,B1", o->area);
-        if (ok && !(o->area[2] > o->area[0] && o->area[3] > o->area[1])) {
-            cli_error("%s: the second corner must be beyond the first in both coordinates, got '%s'", a, v);
-            ok = false;
-        }
-        o->has_area = true;
-    } else if (!strcmp(a, "--margin")) {
-        ok = cli_parse_double(a, v, 0.0, 1e6, &o->margin);
-    } else if (!strcmp(a, "--spacing")) {
-        ok = cli_parse_double(a, v, 1e-4, 1e6, &o->spacing);
-    } else if (!strcmp(a, "--points")) {
-        o->points = v;
+    if (cli_sensor_place_option(a, v, &o->place, &ok)) {
+        /* --plane, --area, --margin, --spacing, --points */
     } else if (!strcmp(a, "--from")) {
         il_error err = {0};
         int day;
@@ -141,11 +126,11 @@ static int parse_options(int argc, char **argv, options *o)
     }
     if (cli_require_scene("sunhours", o->scene) != IL_EXIT_OK)
         return IL_EXIT_USAGE;
-    if (o->has_plane + (o->points != NULL) != 1) {
+    if (o->place.has_plane + (o->place.points != NULL) != 1) {
         cli_error("sunhours: give one of --plane AXIS=VALUE and --points FILE (see 'illum sunhours --help')");
         return IL_EXIT_USAGE;
     }
-    if (!o->has_plane && (o->has_area || o->margin > 0.0 || o->spacing > 0.0)) {
+    if (!o->place.has_plane && (o->place.has_area || o->place.margin > 0.0 || o->place.spacing > 0.0)) {
         cli_error("sunhours: --area, --margin and --spacing shape a --plane grid");
         return IL_EXIT_USAGE;
     }
@@ -165,17 +150,9 @@ static int parse_options(int argc, char **argv, options *o)
 /* The sensors of --plane or --points. */
 static int make_sensors(options *o, const il_scene *scene, cli_sensor_grid *g)
 {
-    if (o->points)
-        return cli_read_sensors(o->points, g);
-    if (!o->has_area) {
-        il_scene_info in;
-        il_scene_get_info(scene, &in);
-        cli_plane_area(&o->plane, in.bounds_min, in.bounds_max, o->margin, o->area);
-    } else {
-        o->area[0] += o->margin, o->area[1] += o->margin;
-        o->area[2] -= o->margin, o->area[3] -= o->margin;
-    }
-    return cli_plane_grid(&o->plane, o->area, o->spacing, g);
+    if (o->place.points)
+        return cli_read_sensors(o->place.points, g);
+    return cli_plane_sensors(scene, &o->place, g);
 }
 
 static int write_csv(const char *path, const cli_sensor_grid *g, const double *hours)
@@ -219,13 +196,7 @@ static summary summarize(const options *o, const cli_sensor_grid *g, const doubl
 static void print_summary(const options *o, const cli_sensor_grid *g, const double *hours,
                           const il_sun_hours_stats *st, const summary *m)
 {
-    static const char names[] = "xyz";
-    if (g->cols)
-        printf("%zu sensors on %c = %g facing %c%c: %u x %u cells of %.3g x %.3g m\n", g->count,
-               names[o->plane.axis], (double)o->plane.value, o->plane.sign > 0 ? '+' : '-',
-               names[o->plane.axis], g->cols, g->rows, g->cell[0], g->cell[1]);
-    else
-        printf("%zu sensors from %s\n", g->count, o->points);
+    cli_print_sensors(g, &o->place);
     double period = o->desc.hours > 0.0 ? o->desc.hours : 24.0;
     printf("period      %g h from %s; the sun above %g degrees for %.2f h\n", period, o->from,
            o->desc.min_altitude, st->sun_up_hours);
@@ -243,7 +214,7 @@ static int write_stats(const options *o, size_t sensors, const il_sun_hours_stat
 {
     cJSON *j = cJSON_CreateObject();
     cJSON_AddStringToObject(j, "scene", o->scene);
-    cJSON_AddStringToObject(j, "mode", o->points ? "points" : "plane");
+    cJSON_AddStringToObject(j, "mode", o->place.points ? "points" : "plane");
     cJSON_AddNumberToObject(j, "sensors", (double)sensors);
     cJSON_AddStringToObject(j, "from", o->from);
     cJSON_AddNumberToObject(j, "hours", o->desc.hours > 0.0 ? o->desc.hours : 24.0);
