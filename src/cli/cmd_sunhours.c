@@ -1,5 +1,6 @@
 /* `illum sunhours SCENE`: hours of direct sun on a plane or at points over
- * a period, a cloudless day by default (docs/illuminance.md#sun-hours). */
+ * a period (a day by default) under a cloudless sky
+ * (docs/illuminance.md#sun-hours). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
