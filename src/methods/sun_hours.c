@@ -64,13 +64,15 @@ il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t c
     double period = desc->hours > 0.0 ? desc->hours : 24.0;
     double step = desc->step_minutes > 0.0 ? desc->step_minutes : 1.0;
     size_t steps = (size_t)ceil(period * 60.0 / step - 1e-9);
+    if (steps == 0)
+        steps = 1; /* a period shorter than a billionth of its step */
     /* The last step may be shorter: it ends with the period. */
     double last = period * 60.0 - (double)(steps - 1) * step;
 
     /* Where the sun stands at the middle of each step, while above the
      * minimum altitude, and how many minutes the step holds. */
-    il_vec3 *towards = malloc((steps ? steps : 1) * sizeof *towards);
-    double *minutes = malloc((steps ? steps : 1) * sizeof *minutes);
+    il_vec3 *towards = malloc(steps * sizeof *towards);
+    double *minutes = malloc(steps * sizeof *minutes);
     if (!towards || !minutes) {
         free(towards);
         free(minutes);
