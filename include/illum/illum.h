@@ -1002,11 +1002,19 @@ typedef struct il_sun_hours_desc {
     double min_altitude;     /* degrees, 0 to 90: the sun counts only above it */
     double north;            /* degrees, as il_sky_desc.north */
     int threads;             /* 0 means all cores */
+    /* Called on the calling thread after every hundredth or so of the sun's
+     * places, or every million rays or so when that comes first (fraction
+     * done in [0, 1)); return false to stop: the hours are then those of the
+     * period up to the last step done (hours_done). */
+    bool (*progress)(double fraction, double seconds, void *user);
+    void *progress_user;
 } il_sun_hours_desc;
 
 typedef struct il_sun_hours_stats {
     double sun_up_hours;     /* hours of the period the sun stood above min_altitude:
                                 what a sensor facing it with nothing around gets */
+    double hours_done;       /* the period's hours counted: all of it unless stopped */
+    bool stopped;            /* progress stopped it */
     uint64_t rays;
     double seconds;
 } il_sun_hours_stats;

@@ -1,6 +1,7 @@
 /* `illum sunhours SCENE`: hours of direct sun on a plane or at points over
  * a period (a day by default) under a cloudless sky
  * (docs/illuminance.md#sun-hours). */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,7 +40,9 @@ static const char *help =
     "  --at-least H           also report the share of sensors with at least H hours\n"
     "  --threads T  --quiet\n"
     "  --stats STATS.json     the summary as JSON\n"
-    "  -o OUT.csv             every sensor: x,y,z,nx,ny,nz,sun_hours\n";
+    "  -o OUT.csv             every sensor: x,y,z,nx,ny,nz,sun_hours\n"
+    "Ctrl-C stops at the next hundredth of the period and writes the hours of the\n"
+    "part counted (exit 130).\n";
 
 typedef struct options {
     const char *scene, *stats, *output, *from;
@@ -199,8 +202,12 @@ static void print_summary(const options *o, const cli_sensor_grid *g, const doub
 {
     cli_print_sensors(g, &o->place);
     double period = o->desc.hours > 0.0 ? o->desc.hours : 24.0;
-    printf("period      %g h from %s; the sun above %g degrees for %.2f h\n", period, o->from,
-           o->desc.min_altitude, st->sun_up_hours);
+    if (st->stopped)
+        printf("period      %.2f h of %g from %s (stopped); the sun above %g degrees for %.2f h\n",
+               st->hours_done, period, o->from, o->desc.min_altitude, st->sun_up_hours);
+    else
+        printf("period      %g h from %s; the sun above %g degrees for %.2f h\n", period, o->from,
+               o->desc.min_altitude, st->sun_up_hours);
     il_vec3 pl = g->sensors[m->lo].position, ph = g->sensors[m->hi].position;
     printf("average     %.2f h of sun\n", m->average);
     printf("minimum     %.2f h at (%g, %g, %g)\n", hours[m->lo], (double)pl.x, (double)pl.y, (double)pl.z);
@@ -225,6 +232,8 @@ static int write_stats(const options *o, size_t sensors, const il_sun_hours_stat
     cJSON_AddNumberToObject(j, "north", o->desc.north);
     cJSON_AddNumberToObject(j, "min_altitude", o->desc.min_altitude);
     cJSON_AddNumberToObject(j, "sun_up_hours", st->sun_up_hours);
+    cJSON_AddNumberToObject(j, "hours_done", st->hours_done);
+    cJSON_AddBoolToObject(j, "stopped", st->stopped);
     cJSON_AddNumberToObject(j, "rays", (double)st->rays);
     cJSON_AddNumberToObject(j, "seconds", st->seconds);
     cJSON *h = cJSON_AddObjectToObject(j, "sun_hours");
@@ -238,6 +247,12 @@ static int write_stats(const options *o, size_t sensors, const il_sun_hours_stat
     bool ok = cli_write_json(o->stats, j);
     cJSON_Delete(j);
     return ok ? IL_EXIT_OK : IL_EXIT_RUNTIME;
+}
+
+/* The progress line on a terminal; Ctrl-C stops at the next round. */
+static bool on_progress(double fraction, double seconds, void *user)
+{
+    return cli_solve_line_update(user, seconds, false, "sunhours: %3.0f%%, %.1f s", 100.0 * fraction, seconds);
 }
 
 int cmd_sunhours(int argc, char **argv)
@@ -267,9 +282,21 @@ int cmd_sunhours(int argc, char **argv)
         rc = IL_EXIT_RUNTIME;
     }
     il_sun_hours_stats stats;
-    if (rc == IL_EXIT_OK && (st = il_sun_hours(scene, g.sensors, g.count, &o.desc, hours, &stats, &err)) != IL_OK) {
-        cli_error("%s", err.message);
-        rc = cli_exit_for(st);
+    if (rc == IL_EXIT_OK) {
+        cli_solve_line line;
+        struct sigaction old_int;
+        cli_interrupted = 0;
+        cli_interrupt_catch(o.quiet, &old_int);
+        cli_solve_line_start(&line, o.quiet, &cli_interrupted);
+        o.desc.progress = on_progress;
+        o.desc.progress_user = &line;
+        st = il_sun_hours(scene, g.sensors, g.count, &o.desc, hours, &stats, &err);
+        cli_solve_line_end(&line);
+        cli_interrupt_release(&old_int);
+        if (st != IL_OK) {
+            cli_error("%s", err.message);
+            rc = cli_exit_for(st);
+        }
     }
     if (rc == IL_EXIT_OK) {
         summary m = summarize(&o, &g, hours);
@@ -280,6 +307,8 @@ int cmd_sunhours(int argc, char **argv)
             rc = write_csv(o.output, &g, hours);
         if (rc == IL_EXIT_OK && o.stats)
             rc = write_stats(&o, g.count, &stats, hours, &m);
+        if (rc == IL_EXIT_OK && stats.stopped)
+            rc = IL_EXIT_INTERRUPTED;
     }
     free(hours);
     free(g.sensors);

@@ -72,14 +72,14 @@ il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t c
     /* Where the sun stands at the middle of each step, while above the
      * minimum altitude, and how many minutes the step holds. */
     il_vec3 *towards = malloc(steps * sizeof *towards);
-    double *minutes = malloc(steps * sizeof *minutes);
-    if (!towards || !minutes) {
+    double *minutes = malloc(steps * sizeof *minutes), *ends = malloc(steps * sizeof *ends);
+    if (!towards || !minutes || !ends) {
         free(towards);
         free(minutes);
+        free(ends);
         return il_fail(err, IL_ERR_MEMORY, "sun hours: out of memory for %zu steps", steps);
     }
     size_t up = 0;
-    double up_minutes = 0.0;
     for (size_t k = 0; k < steps; k++) {
         double len = k + 1 == steps ? last : step;
         double alt, az;
@@ -88,12 +88,13 @@ il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t c
         if (st != IL_OK) {
             free(towards);
             free(minutes);
+            free(ends);
             return st;
         }
         if (alt > desc->min_altitude) {
             towards[up] = il_sky_direction(alt, az, desc->north);
+            ends[up] = (double)k * step + len; /* minutes from the start to the step's end */
             minutes[up++] = len;
-            up_minutes += len; /* summed as a sensor's minutes are */
         }
     }
 
@@ -104,31 +105,56 @@ il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t c
         if ((st = il_tracer_create(scene, &own, err)) != IL_OK) {
             free(towards);
             free(minutes);
+            free(ends);
             return st;
         }
         tracer = own;
     }
+    /* Minutes summed per sensor, the sun's places in order, in rounds of
+     * about a hundredth of them (fewer when that would be more than about
+     * a million rays), after each of which progress may stop it. */
+    for (size_t i = 0; i < count; i++)
+        hours[i] = 0.0;
     uint64_t rays = 0;
     int threads = desc->threads > 0 ? desc->threads : omp_get_max_threads();
+    size_t round = up / 100 + 1, done = 0;
+    if (count > 0 && round * count > 1000000u)
+        round = 1000000u / count > 0 ? 1000000u / count : 1u;
+    double covered = period * 60.0;
+    while (done < up) {
+        size_t end = done + round < up ? done + round : up;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16) reduction(+ : rays)
-    for (size_t i = 0; i < count; i++) {
-        il_vec3 p = sensors[i].position, n = v3_normalize(sensors[i].normal);
-        double sum = 0.0;
-        for (size_t k = 0; k < up; k++) {
-            if (!(v3_dot(n, towards[k]) > 0.0f))
-                continue;
-            il_ray ray = {.org = il_offset_origin(tracer, p, n, towards[k]), .tmin = 0.0f,
-                          .dir = towards[k], .tmax = INFINITY};
-            rays++;
-            if (!il_trace_occluded(tracer, &ray))
-                sum += minutes[k];
+        for (size_t i = 0; i < count; i++) {
+            il_vec3 p = sensors[i].position, n = v3_normalize(sensors[i].normal);
+            for (size_t k = done; k < end; k++) {
+                if (!(v3_dot(n, towards[k]) > 0.0f))
+                    continue;
+                il_ray ray = {.org = il_offset_origin(tracer, p, n, towards[k]), .tmin = 0.0f,
+                              .dir = towards[k], .tmax = INFINITY};
+                rays++;
+                if (!il_trace_occluded(tracer, &ray))
+                    hours[i] += minutes[k];
+            }
         }
-        hours[i] = sum / 60.0;
+        done = end;
+        if (done < up && desc->progress &&
+            !desc->progress((double)done / (double)up, omp_get_wtime() - t0, desc->progress_user)) {
+            stats->stopped = true;
+            covered = ends[done - 1];
+            break;
+        }
     }
+    double up_minutes = 0.0; /* summed as a sensor's minutes are */
+    for (size_t k = 0; k < done; k++)
+        up_minutes += minutes[k];
+    for (size_t i = 0; i < count; i++)
+        hours[i] /= 60.0;
     il_tracer_release(own);
     free(towards);
     free(minutes);
+    free(ends);
     stats->sun_up_hours = up_minutes / 60.0;
+    stats->hours_done = covered / 60.0;
     stats->rays = rays;
     stats->seconds = omp_get_wtime() - t0;
     return IL_OK;

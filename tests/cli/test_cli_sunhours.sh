@@ -2,7 +2,7 @@
 # points on the March equinox at the equator, where the sun is up about
 # 12.08 h (12 h and the refraction at each end), climbing 15 degrees an
 # hour, and a wall to the east hides the morning sun below the wall's top;
-# the CSV and --stats; a scene without lights; bad input.
+# the CSV and --stats; a scene without lights; Ctrl-C; bad input.
 . "$(dirname "$0")/lib.bash"
 
 # A 20 m square ground and a wall 10 m high and 20 km long just east of
@@ -53,6 +53,19 @@ grep -q '"share_at_least":[[:space:]]*1' plane.json || fail "plane.json lacks th
 # A minimum altitude of 30 degrees: the sun climbs 15 degrees an hour there.
 expect_exit 0 "min altitude" -- "$ILLUM" sunhours court.json --points points.txt "${day[@]}" --min-altitude 30
 expect_stdout "the sun above 30 degrees for 8.0[0-4] h" "min altitude: about 8 h"
+
+# Ctrl-C: a year over 160,000 sensors stops at the next round and writes
+# the hours of the part of the year counted.
+expect_interrupted 1 "interrupted" -- "$ILLUM" sunhours court.json --plane y=0 --area -10,-10,10,10 --spacing 0.05 \
+    --from 2026-01-01T00:00Z --hours 8760 --latitude 0 --longitude 0 -o stopped.csv --stats stopped.json
+expect_file stopped.csv "interrupted: the hours so far"
+for k in '"stopped":[[:space:]]*true' '"hours_done":'; do
+    checks=$((checks + 1))
+    grep -q "$k" stopped.json || fail "stopped.json lacks $k"
+done
+checks=$((checks + 1))
+awk '/"hours_done"/ { gsub(/[^0-9.]/, "", $2); exit !($2 > 0 && $2 < 8760) }' stopped.json ||
+    fail "stopped.json: hours_done not within the year"
 
 expect_exit 2 "no period" -- "$ILLUM" sunhours court.json --plane y=0 --latitude 0 --longitude 0
 expect_exit 2 "no place" -- "$ILLUM" sunhours court.json --plane y=0 --from 2026-03-20T00:00Z

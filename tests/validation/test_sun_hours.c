@@ -12,6 +12,9 @@
  *   passing 30 degrees up and down: at the equator on the equinox the sun
  *   climbs 15 degrees an hour, so about 8 h;
  * - a period whose last step is short counts it by its length;
+ * - progress reports rising fractions below 1 and changes nothing; when it
+ *   stops the count, the hours are those of the period up to the step
+ *   reached (the same as a period ending there);
  * - committed or not, one thread or two: the same hours; bad input is
  *   refused. */
 #include <math.h>
@@ -28,6 +31,21 @@ static double equinox_midnight(void)
     il_error err = {0};
     CHECK_OK(il_parse_moment("2026-03-20T00:00Z", &t, &day, &err), &err);
     return t;
+}
+
+typedef struct progress_log {
+    int calls, stop_after;
+    double last;
+    bool rising;
+} progress_log;
+
+static bool on_progress(double fraction, double seconds, void *user)
+{
+    progress_log *l = user;
+    (void)seconds;
+    l->rising = l->rising && fraction > l->last && fraction < 1.0;
+    l->last = fraction;
+    return ++l->calls != l->stop_after;
 }
 
 static il_scene *scene_with(il_vec3 wall_centre, il_vec3 ex, il_vec3 ey)
@@ -89,6 +107,25 @@ int main(void)
     noon.hours = 1.5;
     noon.step_minutes = 60.0;
     CHECK(hours_at(open, up, noon, &st) == 1.5 && st.sun_up_hours == 1.5 && st.rays == 2);
+
+    /* Progress: reported, then stopping after the fifth round. */
+    progress_log log = {.rising = true};
+    il_sun_hours_desc watched = day;
+    watched.progress = on_progress;
+    watched.progress_user = &log;
+    CHECK(hours_at(east, up, watched, &st) == h_east && !st.stopped && st.hours_done == 24.0);
+    printf("progress: %d calls, rising %d\n", log.calls, (int)log.rising);
+    CHECK(log.calls >= 90 && log.calls <= 100 && log.rising);
+    log = (progress_log){.rising = true, .stop_after = 5};
+    double h_stopped = hours_at(open, up, watched, &st);
+    il_sun_hours_desc until = day;
+    until.hours = st.hours_done;
+    il_sun_hours_stats st_until;
+    double h_until = hours_at(open, up, until, &st_until);
+    printf("stopped after 5 rounds: %.4f h of sun in the first %.4f h (a period that long: %.4f h)\n",
+           h_stopped, st.hours_done, h_until);
+    CHECK(st.stopped && st.hours_done > 6.0 && st.hours_done < 7.0);
+    CHECK(h_stopped == st.sun_up_hours && fabs(h_stopped - h_until) < 1e-9 && h_stopped > 0.0);
 
     /* Committed or not, one thread or two: the same hours for a grid of sensors. */
     enum { N = 64 };
