@@ -303,7 +303,7 @@ int cli_env_check(const char *command, const cli_env_options *o);
  * none); prints the error (a missing, corrupt or misshapen map) and
  * returns its exit status.  Does nothing when o is NULL or asks for none
  * of this. */
-int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet);
+int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet);
 /* The scene's daylight sky (--sky or the scene file's), as "sky": {type,
  * sky_lux, ground_albedo and, for a CIE sky, sun_altitude, sun_azimuth,
  * north, sun_normal_lux} in parent; nothing when it has none. */
@@ -321,7 +321,7 @@ int cli_sun_check(const char *command, const cli_env_options *o);
 int cli_sun_resolve(const cli_env_options *o, il_sky_desc *desc, bool quiet);
 /* cli_load_scene with the environment map of `env` (may be NULL) set
  * between loading and committing. */
-int cli_load_scene_env(const char *path, bool quiet, cli_env_options *env, il_scene **out);
+int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out);
 
 /* Compute devices (cli_device.c, docs/cuda.md): `illum info --devices`
  * prints the CPU and every CUDA GPU (or why there is none); --device NAME is

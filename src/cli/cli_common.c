@@ -190,7 +190,7 @@ int cli_load_scene(const char *path, bool quiet, il_scene **out)
     return cli_load_scene_env(path, quiet, NULL, out);
 }
 
-int cli_load_scene_env(const char *path, bool quiet, cli_env_options *env, il_scene **out)
+int cli_load_scene_env(const char *path, bool quiet, const cli_env_options *env, il_scene **out)
 {
     static bool quiet_flag;
     quiet_flag = quiet;

@@ -135,7 +135,7 @@ int cli_env_check(const char *command, const cli_env_options *o)
     return cli_sun_check(command, o);
 }
 
-int cli_env_apply(il_scene *scene, cli_env_options *o, bool quiet)
+int cli_env_apply(il_scene *scene, const cli_env_options *o, bool quiet)
 {
     if (!o || (!o->file && !o->sky && !o->sky_only))
         return IL_EXIT_OK;

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "image/sky.h"
+#include "methods/sensor_check.h"
 #include "illum/illum.h"
 #include "scene/scene.h"
 #include "trace/trace.h"
@@ -39,14 +40,7 @@ static il_status check(const il_scene *scene, const il_sensor *sensors, size_t c
         return il_fail(err, IL_ERR_INVALID, "sun hours: the minimum altitude must be at least 0 and below 90 degrees");
     if (!isfinite(d->north) || fabs(d->north) > 1e6)
         return il_fail(err, IL_ERR_INVALID, "sun hours: north must be a finite number of degrees");
-    for (size_t i = 0; i < count; i++) {
-        il_vec3 p = sensors[i].position, n = sensors[i].normal;
-        if (!v3_is_finite(p) || !v3_is_finite(n))
-            return il_fail(err, IL_ERR_INVALID, "sun hours: sensor %zu has a NaN or infinite coordinate", i);
-        if (!(v3_length(n) > 0.0f))
-            return il_fail(err, IL_ERR_INVALID, "sun hours: sensor %zu has a zero normal", i);
-    }
-    return IL_OK;
+    return il_sensors_check("sun hours", sensors, count, err);
 }
 
 il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t count,

@@ -18,6 +18,7 @@
 #include "core/sampler.h"
 #include "methods/camera_wave.h"
 #include "methods/pt/pt.h"
+#include "methods/sensor_check.h"
 
 #define BLOCK_SAMPLES 64u           /* most samples of one sensor in one work item */
 #define ROUND_SAMPLES (1u << 16)    /* about this many samples between progress calls */
@@ -41,14 +42,7 @@ static il_status check(const il_scene *scene, const il_sensor *sensors, size_t c
                        desc->samples, MAX_SAMPLES);
     if (desc->max_depth > 1024)
         return il_fail(err, IL_ERR_INVALID, "illuminance: max depth %u is more than 1024", desc->max_depth);
-    for (size_t i = 0; i < count; i++) {
-        il_vec3 p = sensors[i].position, n = sensors[i].normal;
-        if (!v3_is_finite(p) || !v3_is_finite(n))
-            return il_fail(err, IL_ERR_INVALID, "illuminance: sensor %zu has a NaN or infinite coordinate", i);
-        if (!(v3_length(n) > 0.0f))
-            return il_fail(err, IL_ERR_INVALID, "illuminance: sensor %zu has a zero normal", i);
-    }
-    return IL_OK;
+    return il_sensors_check("illuminance", sensors, count, err);
 }
 
 /* Adds one sample to a block's sums. */
