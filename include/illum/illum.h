@@ -77,7 +77,9 @@ typedef enum il_material_type {
     IL_MATERIAL_DIFFUSE = 0, /* Lambertian: diffuse/pi */
     IL_MATERIAL_PHONG,       /* diffuse + normalised modified Phong lobe */
     IL_MATERIAL_MIRROR,      /* perfect specular reflection, tinted by `specular` */
-    IL_MATERIAL_DIELECTRIC   /* smooth glass: Fresnel reflection + refraction */
+    IL_MATERIAL_DIELECTRIC,  /* smooth glass: Fresnel reflection + refraction */
+    IL_MATERIAL_THIN_GLASS   /* a window pane of negligible thickness: light passes
+                                straight through or is reflected (docs/materials.md) */
 } il_material_type;
 
 typedef struct il_material_desc {
@@ -90,7 +92,11 @@ typedef struct il_material_desc {
     il_vec3 specular;          /* PHONG: specular albedo.  MIRROR/DIELECTRIC: tint,
                                   zero means white; clamped to 1 as `diffuse` */
     float exponent;            /* PHONG: cos^n exponent; 0 means 32 */
-    float ior;                 /* DIELECTRIC: index of refraction; 0 means 1.5 */
+    float ior;                 /* DIELECTRIC, THIN_GLASS: index of refraction; 0 means 1.5 */
+    float transmittance;       /* THIN_GLASS: the pane's light transmittance at normal
+                                  incidence (a glazing's tau_v, EN 410); 0 means clear
+                                  glass without absorption, (1 - F0) / (1 + F0): 0.923
+                                  at ior 1.5 */
     il_vec3 emission;          /* emitted radiance, W/(sr m^2); zero: not an emitter */
     bool two_sided;            /* emit from both faces */
 } il_material_desc;

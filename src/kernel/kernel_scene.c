@@ -23,6 +23,9 @@ static il_status check_supported(const il_scene *scene, bool extended, il_error 
         if (!extended && m->diffuse_texture)
             return il_fail(err, IL_ERR_INVALID, "material '%s': textured materials do not run on the GPU "
                            "photon kernels yet (docs/cuda.md)", m->name);
+        if (m->type == IL_MATERIAL_THIN_GLASS)
+            return il_fail(err, IL_ERR_INVALID, "material '%s': thin_glass panes do not run on the GPU "
+                           "yet; render with --device cpu (docs/cuda.md)", m->name);
         if (!extended && m->type != IL_MATERIAL_DIFFUSE)
             return il_fail(err, IL_ERR_INVALID, "material '%s': only untextured diffuse materials run on "
                            "the GPU photon kernels so far (docs/cuda.md)", m->name);

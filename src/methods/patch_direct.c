@@ -94,9 +94,7 @@ static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_
                 }
             }
             il_ray ray = il_shadow_ray(scene->tracer, p, n, light->position, v3s(0.0f));
-            if (il_trace_occluded(scene->tracer, &ray))
-                continue;
-            e = v3_fma(e, light->intensity, scale);
+            e = v3_fma(e, light->intensity, scale * il_trace_visibility(scene->tracer, &ray));
         } else if (light->kind == IL_LIGHTK_DIRECTIONAL) {
             float scale;
             il_vec3 wi = il_directional_sample(v3_neg(light->direction), light->cos_cutoff, u, &scale);
@@ -105,9 +103,7 @@ static il_vec3 delta_irradiance(const il_scene *scene, il_vec3 p, il_vec3 n, il_
                 continue;
             il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, wi), .tmin = 0.0f, .dir = wi,
                           .tmax = INFINITY};
-            if (il_trace_occluded(scene->tracer, &ray))
-                continue;
-            e = v3_fma(e, light->intensity, cos_n * scale);
+            e = v3_fma(e, light->intensity, cos_n * scale * il_trace_visibility(scene->tracer, &ray));
         }
     }
     return e;
@@ -165,8 +161,7 @@ static il_vec3 sky_map_irradiance(const il_scene *scene, const il_vec3 *points, 
         il_vec3 p = points[(r * IL_DIRECT_POINTS) / IL_SKY_RAYS];
         il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, dir), .tmin = 0.0f, .dir = dir,
                       .tmax = INFINITY};
-        if (!il_trace_occluded(scene->tracer, &ray))
-            sum = v3_fma(sum, L, w * cos_n / pdf);
+        sum = v3_fma(sum, L, w * cos_n / pdf * il_trace_visibility(scene->tracer, &ray));
     }
     return v3_scale(sum, 1.0f / (float)half);
 }
@@ -208,8 +203,9 @@ il_vec3 il_patch_direct_irradiance(const il_scene *scene, const il_vec3 *corners
             il_vec3 p = points[(r * IL_DIRECT_POINTS) / IL_SKY_RAYS];
             il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, dir), .tmin = 0.0f,
                           .dir = dir, .tmax = INFINITY};
-            if (!il_trace_occluded(scene->tracer, &ray))
-                sum = v3_add(sum, il_environment_radiance(scene, dir));
+            float vis = il_trace_visibility(scene->tracer, &ray);
+            if (vis > 0.0f)
+                sum = v3_fma(sum, il_environment_radiance(scene, dir), vis);
         }
         e = v3_fma(e, sum, IL_PI / IL_SKY_RAYS);
     }

@@ -235,5 +235,6 @@ void il_patch_mesh_release(il_patch_mesh *mesh)
     free(mesh->tri_patch);
     free(mesh->tri_src_mesh);
     free(mesh->tri_src_prim);
+    free(mesh->tri_panes);
     free(mesh);
 }

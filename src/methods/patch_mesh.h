@@ -51,6 +51,9 @@ typedef struct il_patch_mesh {
     uint32_t *tri_patch;        /* per triangle: patch or IL_NO_PATCH */
     uint32_t *tri_src_mesh;     /* per triangle: the scene triangle it lies in */
     uint32_t *tri_src_prim;
+    il_trace_pane *tri_panes;   /* per triangle, its pane (ior 0: none); NULL when the
+                                   scene has no thin_glass: the tracer lets rays
+                                   through them as the scene's does */
     il_tracer *tracer;
 } il_patch_mesh;
 

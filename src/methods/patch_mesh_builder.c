@@ -376,6 +376,26 @@ static void *shrink(void *p, size_t bytes)
     return q ? q : p;
 }
 
+/* The triangles' panes (thin_glass), for the tracer and the hemicube;
+ * none allocated when the scene has no pane. */
+static il_status mesh_panes(const il_scene *scene, il_patch_mesh *m, il_error *err)
+{
+    bool any = false;
+    for (uint32_t i = 0; i < scene->num_materials; i++)
+        any |= scene->materials[i].type == IL_MATERIAL_THIN_GLASS;
+    if (!any)
+        return IL_OK;
+    m->tri_panes = il_calloc((size_t)m->num_tris + 1, sizeof *m->tri_panes, err);
+    if (!m->tri_panes)
+        return IL_ERR_MEMORY;
+    for (uint32_t t = 0; t < m->num_tris; t++) {
+        const il_material *mat = &scene->materials[scene->meshes[m->tri_src_mesh[t]].material];
+        if (mat->type == IL_MATERIAL_THIN_GLASS)
+            m->tri_panes[t] = (il_trace_pane){.ior = mat->ior, .tau = mat->pane_tau};
+    }
+    return IL_OK;
+}
+
 il_status il_patch_builder_finish(il_patch_builder *b, il_patch_mesh **out)
 {
     il_patch_mesh *m = b->m;
@@ -389,8 +409,10 @@ il_status il_patch_builder_finish(il_patch_builder *b, il_patch_mesh **out)
     m->tri_patch = shrink(m->tri_patch, (size_t)m->num_tris * sizeof(uint32_t));
     m->tri_src_mesh = shrink(m->tri_src_mesh, (size_t)m->num_tris * sizeof(uint32_t));
     m->tri_src_prim = shrink(m->tri_src_prim, (size_t)m->num_tris * sizeof(uint32_t));
-    il_status st = il_tracer_create_triangles(m->positions, m->num_vertices, m->tri_indices,
-                                              m->num_tris, &m->tracer, b->err);
+    il_status st = mesh_panes(b->scene, m, b->err);
+    if (st == IL_OK)
+        st = il_tracer_create_triangles_panes(m->positions, m->num_vertices, m->tri_indices,
+                                              m->num_tris, m->tri_panes, &m->tracer, b->err);
     b->m = NULL;
     if (st != IL_OK) {
         il_patch_mesh_release(m);

@@ -391,7 +391,7 @@ static il_status mesh_elements(const il_scene *scene, uint32_t mi, il_patch_elem
 
 static bool is_diffuse(const il_material *m)
 {
-    return m->type != IL_MATERIAL_MIRROR && m->type != IL_MATERIAL_DIELECTRIC;
+    return !IL_MATERIAL_IS_DELTA(m->type);
 }
 
 il_status il_patch_elements_build(const il_scene *scene, il_patch_elements *out, il_error *err)

@@ -8,6 +8,7 @@
 #include "scene/bsdf.h"
 
 #include "core/sampling.h"
+#include "scene/pane.h"
 
 /* Directions closer than this to the tangent plane count as grazing: no energy. */
 #define IL_BSDF_EPS 1e-7f
@@ -27,6 +28,7 @@ void il_bsdf_init(il_bsdf *b, const il_scene *scene, const il_surface *s)
     b->specular = clamp_colour(m->specular);
     b->exponent = il_phong_exponent(m);
     b->ior = m->ior > 0.0f ? m->ior : 1.5f;
+    b->pane_tau = m->pane_tau;
     b->diffuse_prob = 1.0f;
 
     if (b->type == IL_MATERIAL_PHONG) {
@@ -46,7 +48,7 @@ void il_bsdf_init(il_bsdf *b, const il_scene *scene, const il_surface *s)
 
 bool il_bsdf_is_delta(const il_bsdf *b)
 {
-    return b->type == IL_MATERIAL_MIRROR || b->type == IL_MATERIAL_DIELECTRIC;
+    return IL_MATERIAL_IS_DELTA(b->type);
 }
 
 /* ------------------------------------------------------ opaque: diffuse, phong */
@@ -167,6 +169,34 @@ static bool dielectric_sample(const il_bsdf *b, il_vec3 wo, float u_lobe, il_bsd
     return !v3_is_zero(out->weight);
 }
 
+/* -------------------------------------------------------------- thin pane */
+
+/* A ray reaches a pane's surface only when the ray caster did not let it
+ * through, which it does with the pane's transmittance T (trace.c's pane
+ * filter): light passes a pane on a straight line, so every method sees it
+ * pass without a vertex of its own, and a light sample's shadow ray passes
+ * it with the same probability.  What arrives here is reflected about the
+ * geometric normal with weight R / (1 - T), so that R of the light is
+ * reflected in all (R + T = 1 for a pane without absorption: weight 1). */
+static bool pane_sample(const il_bsdf *b, il_vec3 wo, il_bsdf_sample *out)
+{
+    float cos_og = v3_dot(wo, b->ng);
+    if (cos_og == 0.0f)
+        return false;
+    il_vec3 n = cos_og > 0.0f ? b->ng : v3_neg(b->ng);
+    float cos_i = fabsf(cos_og), R, T;
+    il_pane_optics(b->ior, b->pane_tau, cos_i, &R, &T);
+    if (!(T < 1.0f) || !(R > 0.0f))
+        return false;
+    float w = il_minf(R / (1.0f - T), 1.0f);
+    out->wi = v3_sub(v3_scale(n, 2.0f * cos_i), wo);
+    out->pdf = 1.0f;
+    out->delta = true;
+    out->f = v3s(w / cos_i);
+    out->weight = v3s(w);
+    return true;
+}
+
 /* ------------------------------------------------------------------ public */
 
 il_vec3 il_bsdf_eval(const il_bsdf *b, il_vec3 wo, il_vec3 wi, float *pdf)
@@ -203,6 +233,8 @@ bool il_bsdf_sample_dir_cos(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 
 
     if (b->type == IL_MATERIAL_DIELECTRIC)
         return dielectric_sample(b, wo, u_lobe, out);
+    if (b->type == IL_MATERIAL_THIN_GLASS)
+        return pane_sample(b, wo, out);
 
     il_vec3 wo_l;
     bool flip;

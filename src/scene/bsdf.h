@@ -1,5 +1,5 @@
 /* BSDFs of the material model: Lambertian, normalised modified Phong,
- * perfect mirror, smooth dielectric.  All directions are world-space unit
+ * perfect mirror, smooth dielectric, thin pane.  All directions are world-space unit
  * vectors pointing away from the surface; f excludes the cosine. */
 #ifndef IL_SCENE_BSDF_H
 #define IL_SCENE_BSDF_H
@@ -16,6 +16,7 @@ typedef struct il_bsdf {
     il_vec3 specular;
     float exponent;
     float ior;
+    float pane_tau;        /* THIN_GLASS: il_material's */
     float diffuse_prob;    /* PHONG: probability of sampling the diffuse lobe */
 } il_bsdf;
 
@@ -43,7 +44,8 @@ bool il_bsdf_sample_dir(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u, i
  * many samples at once (il_sample_cosine_hemisphere_n). */
 bool il_bsdf_sample_dir_cos(const il_bsdf *b, il_vec3 wo, float u_lobe, il_vec2 u,
                             const il_vec3 *cos_dir, il_bsdf_sample *out);
-/* True when every lobe is a delta (MIRROR, DIELECTRIC): skip light sampling. */
+/* True when every lobe is a delta (MIRROR, DIELECTRIC, THIN_GLASS): skip
+ * light sampling. */
 bool il_bsdf_is_delta(const il_bsdf *b);
 
 /* Shading normals make the two hemispheres of ng and ns disagree near the

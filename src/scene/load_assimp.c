@@ -17,6 +17,8 @@
 #include "image/image_io.h"
 #include "image/srgb.h"
 #include "scene/loader.h"
+#include "scene/mesh_open.h"
+#include "scene/pane.h"
 #include "scene/scene.h"
 #include "scene/xform.h"
 
@@ -50,6 +52,8 @@ typedef struct loader {
     const il_assimp_options *opt;
     bool gltf;
     uint32_t *material_map;        /* per aiMaterial: scene index, or UINT32_MAX if not yet made */
+    uint32_t *pane_map;            /* per aiMaterial: its thin_glass twin for open meshes, or
+                                      UINT32_MAX if not yet made */
     float *emissive_strength;      /* glTF: per material, from the JSON; NULL if none */
     tex_cache_entry *tex_cache;
     uint32_t num_tex_cache;
@@ -342,8 +346,49 @@ static void map_mtl(const struct aiMaterial *m, il_material_desc *d)
     }
 }
 
-/* The scene material for aiMaterial i, converted on first use. */
-static il_status material_for(loader *L, unsigned i, uint32_t *out)
+/* A mesh's triangles, for the choice between glass and a pane. */
+typedef struct mesh_shape {
+    const char *name;
+    const float *positions;
+    uint32_t num_vertices;
+    const uint32_t *indices;
+    uint32_t num_triangles;
+} mesh_shape;
+
+/* True for an MTL material that asks for refraction (illum 6 or 7): a
+ * water surface is one sheet whose medium the container's walls close. */
+static bool refracting(const loader *L, unsigned i)
+{
+    int illum = 2;
+    return !L->gltf && get_int(L->ai->mMaterials[i], "$mat.illum", &illum) && (illum == 6 || illum == 7);
+}
+
+/* A transparent material (DIELECTRIC) that does not ask for refraction, on
+ * an open mesh such as a window modelled as one sheet, would bend light in
+ * and never out: the mesh gets the material as a thin pane instead (the
+ * same name and ior; a pane is neutral, so a tint becomes its
+ * transmittance, clear glass's times the tint's luminance).  *pane says
+ * whether it does. */
+static il_status as_pane(loader *L, unsigned i, const mesh_shape *shape, il_material_desc *d,
+                         bool *pane)
+{
+    *pane = false;
+    if (d->type != IL_MATERIAL_DIELECTRIC || refracting(L, i))
+        return IL_OK;
+    il_status s = il_mesh_is_open(shape->positions, shape->num_vertices, shape->indices,
+                                  shape->num_triangles, pane, L->err);
+    if (s != IL_OK || !*pane)
+        return s;
+    float ior = d->ior > 0.0f ? d->ior : 1.5f, tint = il_luminance(v3_max(d->specular, v3s(0.0f)));
+    d->type = IL_MATERIAL_THIN_GLASS;
+    d->transmittance = tint < 1.0f ? il_maxf(tint, 1e-3f) * il_pane_clear_transmittance(ior) : 0.0f;
+    d->specular = v3s(0.0f);
+    return IL_OK;
+}
+
+/* The scene material for aiMaterial i on a mesh of this shape, converted
+ * on first use (once as glass and once as a pane, when both are needed). */
+static il_status material_for(loader *L, unsigned i, const mesh_shape *shape, uint32_t *out)
 {
     if (L->opt->material_override) {
         *out = L->opt->material_override;
@@ -353,8 +398,8 @@ static il_status material_for(loader *L, unsigned i, uint32_t *out)
         *out = 0;
         return IL_OK;
     }
-    if (L->material_map[i] != UINT32_MAX) {
-        *out = L->material_map[i];
+    if (L->material_map[i] != UINT32_MAX && L->material_map[i] == L->pane_map[i]) {
+        *out = L->material_map[i];   /* the scene file's own material, or not glass */
         return IL_OK;
     }
     const struct aiMaterial *m = L->ai->mMaterials[i];
@@ -363,7 +408,8 @@ static il_status material_for(loader *L, unsigned i, uint32_t *out)
     if (L->opt->lookup) {
         uint32_t r = L->opt->lookup(name.data, L->opt->lookup_user);
         if (r) {
-            *out = L->material_map[i] = r;
+            /* The scene file's own material, on open meshes too. */
+            *out = L->material_map[i] = L->pane_map[i] = r;
             return IL_OK;
         }
     }
@@ -384,11 +430,27 @@ static il_status material_for(loader *L, unsigned i, uint32_t *out)
                 d.diffuse_texture = load_texture(L, tex.data, d.name);
         }
     }
+    bool pane;
+    il_status s = as_pane(L, i, shape, &d, &pane);
+    if (s != IL_OK)
+        return s;
+    uint32_t *slot = pane ? &L->pane_map[i] : &L->material_map[i];
+    if (*slot != UINT32_MAX) {
+        *out = *slot;
+        return IL_OK;
+    }
+    if (pane)
+        il_scene_warn(L->scene, "%s: material '%s' is transparent on an open mesh ('%s', a single "
+                      "sheet): taken as a thin pane (thin_glass), which passes light straight "
+                      "through; refraction needs a closed solid (docs/materials.md)",
+                      L->path, d.name, shape->name);
     uint32_t idx;
-    il_status s = il_scene_add_material(L->scene, &d, &idx, L->err);
+    s = il_scene_add_material(L->scene, &d, &idx, L->err);
     if (s != IL_OK)
         return il_load_prefix_error(L->err, s, L->path, NULL);
-    *out = L->material_map[i] = idx;
+    *out = *slot = idx;
+    if (d.type != IL_MATERIAL_DIELECTRIC && !pane)
+        L->pane_map[i] = idx;        /* not glass: the same on any mesh */
     return IL_OK;
 }
 
@@ -439,11 +501,13 @@ static il_status add_mesh(loader *L, const struct aiMesh *am, const struct aiNod
     }
 
     uint32_t mat;
-    s = material_for(L, am->mMaterialIndex, &mat);
+    const char *name = am->mName.length ? am->mName.data : node->mName.data;
+    const mesh_shape shape = {name, pos, nv, idx, ntri};
+    s = material_for(L, am->mMaterialIndex, &shape, &mat);
     if (s != IL_OK)
         goto done;
     il_mesh_desc d = {
-        .name = am->mName.length ? am->mName.data : node->mName.data,
+        .name = name,
         .num_vertices = nv,
         .num_triangles = ntri,
         .positions = pos,
@@ -802,12 +866,13 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
         memcpy(L.dir, path, (size_t)(slash - path + 1));
     il_status s = IL_OK;
     L.material_map = il_malloc((ai->mNumMaterials + 1) * sizeof(uint32_t), err);
-    if (!L.material_map) {
+    L.pane_map = il_malloc((ai->mNumMaterials + 1) * sizeof(uint32_t), err);
+    if (!L.material_map || !L.pane_map) {
         s = IL_ERR_MEMORY;
         goto done;
     }
     for (unsigned i = 0; i < ai->mNumMaterials; i++)
-        L.material_map[i] = UINT32_MAX;
+        L.material_map[i] = L.pane_map[i] = UINT32_MAX;
     if (L.gltf)
         L.emissive_strength = gltf_emissive_strengths(&L);
 
@@ -838,6 +903,7 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
     set_camera(&L, &root);
 done:
     free(L.material_map);
+    free(L.pane_map);
     free(L.emissive_strength);
     free(L.tex_cache);
     aiReleaseImport(ai);

@@ -237,7 +237,7 @@ static uint32_t lookup_material(const char *name, void *user)
 static il_status parse_material(jctx *c, const cJSON *m, const char *name, const char *where)
 {
     static const char *const keys[] = {"type", "diffuse", "texture", "specular", "exponent",
-                                       "ior", "emission", "two_sided", NULL};
+                                       "ior", "transmittance", "emission", "two_sided", NULL};
     il_status s = expect_object(c, m, where);
     if (s != IL_OK)
         return s;
@@ -257,10 +257,13 @@ static il_status parse_material(jctx *c, const cJSON *m, const char *name, const
         d.type = IL_MATERIAL_MIRROR;
     else if (strcmp(type, "dielectric") == 0)
         d.type = IL_MATERIAL_DIELECTRIC;
+    else if (strcmp(type, "thin_glass") == 0)
+        d.type = IL_MATERIAL_THIN_GLASS;
     else {
         char w[WHERE_MAX];
         child_key(w, where, "type");
-        return bad(c, w, "expected \"diffuse\", \"phong\", \"mirror\" or \"dielectric\"");
+        return bad(c, w, "expected \"diffuse\", \"phong\", \"mirror\", \"dielectric\" or "
+                         "\"thin_glass\"");
     }
     if (d.type == IL_MATERIAL_PHONG)
         d.specular = v3s(0.2f);
@@ -269,6 +272,7 @@ static il_status parse_material(jctx *c, const cJSON *m, const char *name, const
         (s = get_colour(c, m, "emission", where, &d.emission)) != IL_OK ||
         (s = get_float_min(c, m, "exponent", where, 0.0f, &d.exponent)) != IL_OK ||
         (s = get_float_min(c, m, "ior", where, 1.0f, &d.ior)) != IL_OK ||
+        (s = get_float_min(c, m, "transmittance", where, 0.0f, &d.transmittance)) != IL_OK ||
         (s = get_bool(c, m, "two_sided", where, &d.two_sided)) != IL_OK)
         return s;
     const char *tex = NULL;

@@ -1,5 +1,6 @@
 /* Building the in-memory scene: il_scene_create / add_* / commit / release. */
 #include "scene/scene.h"
+#include "scene/pane.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -93,6 +94,28 @@ static bool point_in_range(il_vec3 p)
            fabsf(p.z) <= IL_MAX_COORD;
 }
 
+/* A thin pane's checks: neutral (its shadow rays pass a grey fraction of
+ * the light, scene/pane.h), an index above 1, a transmittance it can reach;
+ * *tau the internal transmittance that gives it. */
+static il_status pane_params(const il_material_desc *d, const char *name, float *tau, il_error *err)
+{
+    il_vec3 c = d->specular;
+    if (!v3_is_zero(c) && !(c.x == c.y && c.y == c.z && c.x >= 1.0f))
+        return il_fail(err, IL_ERR_INVALID, "material '%s': a thin_glass pane is neutral (its tint "
+                       "must be white or left out); use transmittance to darken it", name);
+    float ior = d->ior > 0.0f ? d->ior : 1.5f;
+    if (!(ior > 1.0f))
+        return il_fail(err, IL_ERR_INVALID, "material '%s': a thin_glass pane needs an ior above 1 "
+                       "(got %g)", name, (double)ior);
+    float t = d->transmittance, clear = il_pane_clear_transmittance(ior);
+    if (!(t >= 0.0f) || !(t <= clear))
+        return il_fail(err, IL_ERR_INVALID, "material '%s': transmittance %g is outside 0 to %.4f "
+                       "(clear glass of ior %g; 0 means clear)", name, (double)t, (double)clear,
+                       (double)ior);
+    *tau = t > 0.0f ? il_pane_tau_for(ior, t) : 1.0f;
+    return IL_OK;
+}
+
 il_status il_scene_add_material(il_scene *s, const il_material_desc *d, uint32_t *out_index,
                                 il_error *err)
 {
@@ -102,13 +125,19 @@ il_status il_scene_add_material(il_scene *s, const il_material_desc *d, uint32_t
     if (!vec_finite_nonneg(d->diffuse) || !vec_finite_nonneg(d->specular) ||
         !vec_finite_nonneg(d->emission))
         return il_fail(err, IL_ERR_INVALID, "material '%s': colours must be finite and >= 0", name);
-    if ((unsigned)d->type > IL_MATERIAL_DIELECTRIC)
+    if ((unsigned)d->type > IL_MATERIAL_THIN_GLASS)
         return il_fail(err, IL_ERR_INVALID, "material '%s': unknown type %d", name, (int)d->type);
     if (d->diffuse_texture > s->num_textures)
         return il_fail(err, IL_ERR_INVALID, "material '%s': no texture %u", name, d->diffuse_texture);
     if (!(d->exponent >= 0.0f) || !isfinite(d->exponent) || !(d->ior >= 0.0f) || !isfinite(d->ior))
         return il_fail(err, IL_ERR_INVALID, "material '%s': exponent and ior must be finite and >= 0",
                        name);
+    float pane_tau = 1.0f;
+    if (d->type == IL_MATERIAL_THIN_GLASS) {
+        il_status st = pane_params(d, name, &pane_tau, err);
+        if (st != IL_OK)
+            return st;
+    }
     if (!grow((void **)&s->materials, &s->cap_materials, s->num_materials + 1, sizeof(il_material), err))
         return IL_ERR_MEMORY;
     il_material *m = &s->materials[s->num_materials];
@@ -122,10 +151,11 @@ il_status il_scene_add_material(il_scene *s, const il_material_desc *d, uint32_t
     if (clamped)
         il_scene_warn(s, "material '%s': albedo above 1 clamped to 1 (a surface cannot reflect "
                          "more light than it receives)", m->name);
-    if ((d->type == IL_MATERIAL_MIRROR || d->type == IL_MATERIAL_DIELECTRIC) && v3_is_zero(m->specular))
+    if (IL_MATERIAL_IS_DELTA(d->type) && v3_is_zero(m->specular))
         m->specular = v3s(1.0f);
     m->exponent = d->exponent > 0.0f ? d->exponent : 32.0f;
     m->ior = d->ior > 0.0f ? d->ior : 1.5f;
+    m->pane_tau = pane_tau;
     m->emission = d->emission;
     m->two_sided = d->two_sided;
     if (out_index)

@@ -46,6 +46,12 @@ typedef struct il_texture {
     float *rgb;            /* linear RGB, rows top to bottom */
 } il_texture;
 
+/* Mirror, glass and panes: every lobe a delta (no light sampling, no
+ * radiosity patch). */
+#define IL_MATERIAL_IS_DELTA(type) \
+    ((type) == IL_MATERIAL_MIRROR || (type) == IL_MATERIAL_DIELECTRIC || \
+     (type) == IL_MATERIAL_THIN_GLASS)
+
 typedef struct il_material {
     char name[IL_NAME_MAX];
     il_material_type type;
@@ -54,6 +60,8 @@ typedef struct il_material {
     il_vec3 specular;          /* defaults resolved: MIRROR/DIELECTRIC tint is white when given as zero */
     float exponent;            /* resolved: never 0 for PHONG */
     float ior;                 /* resolved: never 0 */
+    float pane_tau;            /* THIN_GLASS: internal transmittance per normal pass
+                                  (scene/pane.h), from il_material_desc.transmittance */
     il_vec3 emission;
     bool two_sided;
 } il_material;

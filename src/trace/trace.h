@@ -38,12 +38,33 @@ il_status il_tracer_create(const il_scene *scene, il_tracer **out, il_error *err
 il_status il_tracer_create_triangles(const il_vec3 *positions, uint32_t num_vertices,
                                      const uint32_t *indices, uint32_t num_triangles,
                                      il_tracer **out, il_error *err);
+/* The same with thin panes among the triangles: panes[i] is triangle i's
+ * (ior 0: not a pane), used in place like the other arrays. */
+typedef struct il_trace_pane {
+    float ior, tau;        /* il_material's ior and pane_tau (scene/pane.h) */
+} il_trace_pane;
+il_status il_tracer_create_triangles_panes(const il_vec3 *positions, uint32_t num_vertices,
+                                           const uint32_t *indices, uint32_t num_triangles,
+                                           const il_trace_pane *panes, il_tracer **out,
+                                           il_error *err);
 void il_tracer_release(il_tracer *tracer);
 
 /* Returns true and fills hit when the ray hits something in [tmin, tmax]. */
 bool il_trace_closest(const il_tracer *tracer, const il_ray *ray, il_hit *hit);
-/* True when anything blocks the ray in [tmin, tmax]. */
+/* Thin panes (IL_MATERIAL_THIN_GLASS) pass light on a straight line
+ * (trace.c, pane_filter): il_trace_closest and il_trace_closest_n let a ray
+ * through a pane with its transmittance T at the ray's incidence (a draw
+ * that depends on the ray and the triangle only) and otherwise report the
+ * pane, whose BSDF reflects; il_trace_visibility weighs a ray by the T of
+ * every pane it passes; il_trace_occluded sees only opaque surfaces. */
+
+/* True when an opaque surface blocks the ray in [tmin, tmax] (panes let it
+ * through: hours of sun, the Linespace's in-shaft test, link visibility). */
 bool il_trace_occluded(const il_tracer *tracer, const il_ray *ray);
+/* The fraction of light that passes along the ray in [tmin, tmax]: 0 when
+ * an opaque surface blocks it, else the product of the panes' T (1 when it
+ * meets none).  What a light sample's shadow ray needs. */
+float il_trace_visibility(const il_tracer *tracer, const il_ray *ray);
 
 /* Streams: n independent rays at once (Embree's rtcIntersect1M/rtcOccluded1M),
  * cheaper per ray for coherent batches. */
@@ -53,6 +74,7 @@ void il_trace_closest_n(const il_tracer *tracer, const il_ray *rays, il_hit *hit
 void il_trace_closest_n_coherent(const il_tracer *tracer, const il_ray *rays, il_hit *hits,
                                  size_t n);
 void il_trace_occluded_n(const il_tracer *tracer, const il_ray *rays, bool *occluded, size_t n);
+void il_trace_visibility_n(const il_tracer *tracer, const il_ray *rays, float *visibility, size_t n);
 
 /* The distance by which secondary rays leave a surface: scaled to the scene
  * (a fixed fraction of its extent) so millimetre and metre scenes behave alike. */

@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "illum/illum.h"
+#include "scene/pane.h"
 #include "scene/scene.h"
 
 static const char *tmp(const char *name)
@@ -88,6 +89,7 @@ static void test_full_scene(void)
         "  \"shiny\": {\"type\": \"phong\", \"diffuse\": 0.2, \"specular\": [0.5,0.5,0.5], \"exponent\": 50},\n"
         "  \"glass\": {\"type\": \"dielectric\", \"ior\": 1.7},\n"
         "  \"chrome\": {\"type\": \"mirror\"},\n"
+        "  \"window\": {\"type\": \"thin_glass\", \"ior\": 1.52, \"transmittance\": 0.7},\n"
         "  \"lamp\": {\"emission\": [5, 4, 3], \"two_sided\": true}\n"
         "},\n"
         "\"meshes\": [\n"
@@ -119,7 +121,7 @@ static void test_full_scene(void)
     CHECK(info.num_meshes == 5);
     /* 1 + 1 + 12 + sphere (2*16*(8-1) = 224) + 2 */
     CHECK(info.num_triangles == 1 + 1 + 12 + 224 + 2);
-    CHECK(info.num_materials == 6);
+    CHECK(info.num_materials == 7);
     CHECK(info.num_lights == 3);
     CHECK(info.has_environment);
     CHECK(info.has_camera);
@@ -127,6 +129,14 @@ static void test_full_scene(void)
     CHECK(info.dropped_triangles == 0);
     CHECK(info.num_emissive_triangles == 2);
 
+    for (uint32_t i = 0; i < s->num_materials; i++)
+        if (strcmp(s->materials[i].name, "window") == 0) {
+            const il_material *w = &s->materials[i];
+            float R, T;
+            il_pane_optics(w->ior, w->pane_tau, 1.0f, &R, &T);
+            CHECK(w->type == IL_MATERIAL_THIN_GLASS && w->ior == 1.52f);
+            CHECK_NEAR(T, 0.7, 1e-5);
+        }
     const il_mesh *tri = find_mesh(s, "tri");
     CHECK(tri != NULL);
     if (tri) {
@@ -337,6 +347,12 @@ static void test_errors(void)
          IL_ERR_FORMAT, "bad.json: materials.m.two_sided: expected true or false"},
         {"{\"materials\":{\"m\":{\"ior\":0.5}},\"meshes\":[{\"shape\":\"quad\"}]}",
          IL_ERR_FORMAT, "bad.json: materials.m.ior: expected a number >= 1"},
+        {"{\"materials\":{\"m\":{\"type\":\"thin_glass\",\"transmittance\":0.95}},"
+         "\"meshes\":[{\"shape\":\"quad\"}]}",
+         IL_ERR_INVALID, "bad.json: materials.m: material 'm': transmittance 0.95 is outside 0 to 0.9231"},
+        {"{\"materials\":{\"m\":{\"type\":\"thin_glass\",\"specular\":[1,0.5,0.5]}},"
+         "\"meshes\":[{\"shape\":\"quad\"}]}",
+         IL_ERR_INVALID, "bad.json: materials.m: material 'm': a thin_glass pane is neutral"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"camera\":{\"position\":[0,0,1]}}",
          IL_ERR_FORMAT, "bad.json: camera: \"position\" and \"target\" are required"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"camera\":{\"position\":[0,0,1],\"target\":[0,0,1]}}",

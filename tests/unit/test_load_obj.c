@@ -601,10 +601,53 @@ static void test_collada_camera(void)
     il_scene_release(s);
 }
 
+/* Transparent materials that ask for no refraction (d < 1, illum 4) on an
+ * open mesh (a window as one sheet) become thin panes with a warning; on a
+ * closed solid (a cube whose corners repeat per face) and with illum 7
+ * (refraction) they stay dielectric. */
+static void test_window_panes(void)
+{
+    write_text(tmp("panes.mtl"), "newmtl window\nKd 0 0 0\nd 0.3\nNi 1.52\nillum 2\n"
+                                 "newmtl tinted\nKd 0 0 0\nillum 4\n"
+                                 "newmtl solid\nKd 0 0 0\nd 0.5\nillum 2\n"
+                                 "newmtl sheet7\nNi 1.33\nillum 7\n"
+                                 "newmtl wall\nKd 0.5 0.5 0.5\n");
+    write_text(tmp("panes.obj"),
+               "mtllib panes.mtl\n"
+               "o pane\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl window\nf 1 2 3 4\n"
+               "o sheet\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nusemtl sheet7\nf 5 6 7 8\n"
+               "o cube\n"
+               "v 2 0 0\nv 3 0 0\nv 3 1 0\nv 2 1 0\nv 2 0 1\nv 3 0 1\nv 3 1 1\nv 2 1 1\n"
+               "vn 0 0 -1\nvn 0 0 1\nvn -1 0 0\nvn 1 0 0\nvn 0 -1 0\nvn 0 1 0\n"
+               "usemtl solid\n"
+               "f 9//1 12//1 11//1 10//1\nf 13//2 14//2 15//2 16//2\nf 9//3 13//3 16//3 12//3\n"
+               "f 10//4 11//4 15//4 14//4\nf 9//5 10//5 14//5 13//5\nf 12//6 16//6 15//6 11//6\n"
+               "o floor\nv -5 -1 -5\nv 5 -1 -5\nv 5 -1 5\nv -5 -1 5\nusemtl wall\nf 17 20 19 18\n");
+    il_scene *s = load_ok(tmp("panes.obj"));
+    if (!s)
+        return;
+    const char *expect[][2] = {{"pane", "thin"}, {"sheet", "dielectric"}, {"cube", "dielectric"}};
+    for (int k = 0; k < 3; k++) {
+        const il_material *m = NULL;
+        for (uint32_t i = 0; i < s->num_meshes; i++)
+            if (strcmp(s->meshes[i].name, expect[k][0]) == 0)
+                m = &s->materials[s->meshes[i].material];
+        bool thin = strcmp(expect[k][1], "thin") == 0;
+        printf("%s: %s\n", expect[k][0], m ? (m->type == IL_MATERIAL_THIN_GLASS ? "thin_glass" : "other") : "?");
+        CHECK(m && m->type == (thin ? IL_MATERIAL_THIN_GLASS : IL_MATERIAL_DIELECTRIC));
+        if (m && thin)
+            CHECK_NEAR(m->ior, 1.52f, 1e-6);
+    }
+    CHECK(any_warning_contains(s, "'window' is transparent on an open mesh ('pane'"));
+    CHECK(!any_warning_contains(s, "'solid'") && !any_warning_contains(s, "'sheet7'"));
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_cornell_original();
     test_mtl_mapping();
+    test_window_panes();
     test_bunny_ply();
     test_empty_faces();
     test_ply_counts();

@@ -2,7 +2,7 @@
  * - open sky, facing up: every hour the sun stands above the horizon (the
  *   period's sun_up_hours); on the equinox at the equator that is 12 h and
  *   the few minutes refraction adds at each end (12.03-12.12 h); facing
- *   down, none;
+ *   down, none; under a window pane (thin_glass) the same as the open sky;
  * - a tall wall just east of the sensor hides the whole morning, one just
  *   west the afternoon: the two add up to the open sky's hours (within the
  *   steps near noon, when the sun passes over both), each about half;
@@ -79,6 +79,14 @@ int main(void)
     CHECK(h_open > 12.03 && h_open < 12.12);
     CHECK(st.rays == (uint64_t)llround(st.sun_up_hours * 60.0));
     CHECK(hours_at(open, v3(0, -1, 0), day, NULL) == 0.0);
+
+    /* A window pane (thin_glass) over the sensor does not stop the sun. */
+    il_scene *glazed = new_scene();
+    add_floor(glazed, 1.0f, 50.0f, add_material(glazed, (il_material_desc){.type = IL_MATERIAL_THIN_GLASS}));
+    double h_glazed = hours_at(glazed, up, day, NULL);
+    printf("under a pane: %.4f h\n", h_glazed);
+    CHECK(h_glazed == h_open);
+    il_scene_release(glazed);
 
     /* Walls 0.5 m east (+x) and west (-x), 10 km high and long. */
     il_scene *east = scene_with(v3(0.5f, 0, 0), v3(0, 0, 2e4f), v3(0, 2e4f, 0));

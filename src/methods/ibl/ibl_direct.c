@@ -22,9 +22,10 @@ static bool sample_light(const il_scene *s, uint32_t li, il_vec3 p, il_vec2 u, i
     return pmf > 0.0f && *pdf > 0.0f && isfinite(*pdf);
 }
 
-/* contribution when the shadow ray from the vertex towards the sample is free */
-static il_vec3 unoccluded(const il_scene *s, const il_ibl_vertex *v, const il_light_sample *ls,
-                          il_vec3 c, uint64_t *rays)
+/* The part of contribution c that the shadow ray from the vertex towards
+ * the sample lets through (il_trace_visibility). */
+static il_vec3 visible_part(const il_scene *s, const il_ibl_vertex *v, const il_light_sample *ls,
+                            il_vec3 c, uint64_t *rays)
 {
     if (v3_is_zero(c) || !v3_is_finite(c))
         return v3s(0.0f);
@@ -35,7 +36,7 @@ static il_vec3 unoccluded(const il_scene *s, const il_ibl_vertex *v, const il_li
     else
         r = il_shadow_ray(tr, v->org, v->g, ls->p, ls->n);
     (*rays)++;
-    return il_trace_occluded(tr, &r) ? v3s(0.0f) : c;
+    return v3_scale(c, il_trace_visibility(tr, &r));
 }
 
 il_vec3 il_ibl_other_lights(const il_ibl_camera *c, const il_ibl_vertex *v, float u_select,
@@ -50,14 +51,14 @@ il_vec3 il_ibl_other_lights(const il_ibl_camera *c, const il_ibl_vertex *v, floa
         if (!sample_light(s, c->delta[k], v->org, v2(0.5f, 0.5f), &ls, &pdf))
             continue;
         il_vec3 f = il_ibl_f_cos(v, ls.wi);
-        L = v3_add(L, unoccluded(s, v, &ls, v3_scale(v3_mul(f, ls.radiance), 1.0f / pdf), rays));
+        L = v3_add(L, visible_part(s, v, &ls, v3_scale(v3_mul(f, ls.radiance), 1.0f / pdf), rays));
     }
     if (c->num_area > 0) {
         float pick;
         uint32_t j = il_distrib1d_sample_discrete(&c->area_pick, u_select, &pick, NULL);
         if (pick > 0.0f && sample_light(s, c->area[j], v->org, u, &ls, &pdf)) {
             il_vec3 f = il_ibl_f_cos(v, ls.wi);
-            L = v3_add(L, unoccluded(s, v, &ls, v3_scale(v3_mul(f, ls.radiance), 1.0f / (pick * pdf)),
+            L = v3_add(L, visible_part(s, v, &ls, v3_scale(v3_mul(f, ls.radiance), 1.0f / (pick * pdf)),
                                      rays));
         }
     }

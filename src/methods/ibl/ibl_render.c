@@ -37,7 +37,7 @@ static void state_free(ibl_state *st)
             free(sc->rays);
             free(sc->contrib);
             free(sc->pixel);
-            free(sc->occluded);
+            free(sc->visible);
         }
         free(st->scratch);
     }
@@ -91,8 +91,8 @@ static il_status state_init(ibl_state *st, const il_scene *scene, const il_film 
         sc->rays = il_malloc(n * sizeof(il_ray), err);
         sc->contrib = il_malloc(n * sizeof(il_vec3), err);
         sc->pixel = il_malloc(n * sizeof(uint32_t), err);
-        sc->occluded = il_malloc(n * sizeof(bool), err);
-        if (!sc->rays || !sc->contrib || !sc->pixel || !sc->occluded)
+        sc->visible = il_malloc(n * sizeof(float), err);
+        if (!sc->rays || !sc->contrib || !sc->pixel || !sc->visible)
             return IL_ERR_MEMORY;
     }
     return IL_OK;

@@ -2,7 +2,7 @@
  *
  * Shadow rays of one directional light from the points of a tile are
  * parallel and start close together: they are cast together, one stream
- * per light and tile (il_trace_occluded_n), so they walk the same nodes of
+ * per light and tile (il_trace_visibility_n), so they walk the same nodes of
  * the BVH one after another.  Rays that cannot carry light are never cast:
  * lights below the surface's geometric or shading horizon, black lights,
  * zero BSDF values.
@@ -93,12 +93,14 @@ void il_ibl_shade_tile(const il_ibl_job *job, uint32_t t, bool first, uint32_t l
                 sc->pixel[m] = v[k].pixel;
                 m++;
             }
-            il_trace_occluded_n(tr, sc->rays, sc->occluded, m);
+            il_trace_visibility_n(tr, sc->rays, sc->visible, m);
             ts->shadow_rays += m;
             ts->rays += m;
             for (uint32_t j = 0; j < m; j++)
-                if (!sc->occluded[j])
-                    accumulate(job->acc, sc->pixel[j], sc->contrib[j], ts);
+                if (sc->visible[j] > 0.0f)
+                    accumulate(job->acc, sc->pixel[j], sc->visible[j] == 1.0f ? sc->contrib[j]
+                                                       : v3_scale(sc->contrib[j], sc->visible[j]),
+                               ts);
         } else {
             const il_ibl_shadow_map *map = maps ? &maps->maps[l - l0] : NULL;
             for (uint32_t k = 0; k < n; k++) {

@@ -25,7 +25,7 @@ typedef struct il_ibl_scratch {
     il_ray *rays;
     il_vec3 *contrib;
     uint32_t *pixel;
-    bool *occluded;
+    float *visible;
 } il_ibl_scratch;
 
 typedef struct il_ibl_tile_stats {

@@ -250,12 +250,14 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
 }
 
 
-/* Adds the vertex's direct light (unless its shadow ray was blocked), then
- * what it read from the Linespace. */
-static void path_finish_vertex(ls_path *p, bool occluded)
+/* Adds the vertex's direct light (the part its shadow ray let through),
+ * then what it read from the Linespace. */
+static void path_finish_vertex(ls_path *p, float visible)
 {
-    if (p->shadow && !occluded)
+    if (p->shadow && visible == 1.0f)
         p->L = v3_add(p->L, p->shadow_L);
+    else if (p->shadow && visible > 0.0f)
+        p->L = v3_fma(p->L, p->shadow_L, visible);
     if (p->read)
         p->L = v3_add(p->L, p->read_L);
     p->shadow = p->read = false;
@@ -286,8 +288,8 @@ typedef struct ls_wave {
     il_sampler smp[LS_WAVE];
     uint32_t px[LS_WAVE], py[LS_WAVE];
     uint32_t active[LS_WAVE], stepped[LS_WAVE], drawing[LS_WAVE], shadowed[LS_WAVE];
-    bool occluded[LS_WAVE];        /* [j] */
-    bool blocked[LS_WAVE];         /* [k]: the shadow stream's answers */
+    float visible[LS_WAVE];        /* [j]: its shadow ray's il_trace_visibility */
+    float vis_k[LS_WAVE];          /* [k]: the shadow stream's answers */
     il_ray rays[LS_WAVE];
     il_hit hits[LS_WAVE];          /* [a] */
     il_surface surf[LS_WAVE];      /* [a] */
@@ -365,7 +367,7 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
                                      drawing ? &w->u[k * LS_PAIRS] : NULL,
                                      drawing ? &w->cos_dir[k] : NULL, drawing ? &w->diffuse_out[k] : NULL,
                                      &w->smp[j], cnt);
-            w->occluded[j] = false;
+            w->visible[j] = 1.0f;
             if (p->shadow) {
                 w->shadowed[num_shadow] = j;
                 w->rays[num_shadow++] = p->shadow_ray;
@@ -410,12 +412,12 @@ static void run_wave(const ls_method *m, ls_wave *w, uint32_t n, bool prefetch, 
                 w->active[still++] = j;
         }
         if (num_shadow > 0) {
-            il_trace_occluded_n(tr, w->rays, w->blocked, num_shadow);
+            il_trace_visibility_n(tr, w->rays, w->vis_k, num_shadow);
             for (uint32_t k = 0; k < num_shadow; k++)
-                w->occluded[w->shadowed[k]] = w->blocked[k];
+                w->visible[w->shadowed[k]] = w->vis_k[k];
         }
         for (uint32_t a = 0; a < num_active; a++)
-            path_finish_vertex(&w->path[w->stepped[a]], w->occluded[w->stepped[a]]);
+            path_finish_vertex(&w->path[w->stepped[a]], w->visible[w->stepped[a]]);
         num_active = still;
     }
 }

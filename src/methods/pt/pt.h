@@ -92,10 +92,14 @@ bool il_pt_step(const il_scene *scene, il_pt_state *st, const il_hit *hit, il_sa
 bool il_pt_step_at(const il_scene *scene, il_pt_state *st, const il_hit *hit,
                    const il_surface *surf, const il_pt_drawn *drawn, il_sampler *sampler,
                    uint32_t max_depth, il_pt_strategy strategy);
-static inline void il_pt_shadow_result(il_pt_state *st, bool occluded)
+/* visibility: il_trace_visibility of the shadow ray (0 blocked, 1 clear,
+ * between: through panes). */
+static inline void il_pt_shadow_result(il_pt_state *st, float visibility)
 {
-    if (!occluded)
+    if (visibility == 1.0f)
         st->L = v3_add(st->L, st->shadow_L);
+    else if (visibility > 0.0f)
+        st->L = v3_fma(st->L, st->shadow_L, visibility);
     st->shadow = false;
 }
 

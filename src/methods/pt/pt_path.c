@@ -202,7 +202,7 @@ static void pt_continue(const il_scene *s, il_pt_state *st, il_sampler *smp, uin
         bool found = il_trace_closest(tr, &st->ray, &hit);
         bool more = il_pt_step(s, st, found ? &hit : NULL, smp, max_depth, strategy);
         if (st->shadow)
-            il_pt_shadow_result(st, il_trace_occluded(tr, &st->shadow_ray));
+            il_pt_shadow_result(st, il_trace_visibility(tr, &st->shadow_ray));
         if (!more)
             break;
     }
@@ -243,7 +243,7 @@ il_vec3 il_pt_sensor_irradiance(const il_scene *s, il_vec3 p, il_vec3 n, il_samp
     il_pt_sensor_begin(&st, p, n, &surf, &sensor);
     bool more = il_pt_step_at(s, &st, &sensor, &surf, NULL, smp, max_depth, IL_PT_MIS);
     if (st.shadow)
-        il_pt_shadow_result(&st, il_trace_occluded(s->tracer, &st.shadow_ray));
+        il_pt_shadow_result(&st, il_trace_visibility(s->tracer, &st.shadow_ray));
     if (more)
         pt_continue(s, &st, smp, max_depth, IL_PT_MIS);
     *rays += st.rays;

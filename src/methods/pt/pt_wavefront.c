@@ -1,6 +1,6 @@
 /* The path tracer's camera pass, wavefront style: the paths of a tile
  * advance together one vertex at a time, and each step's rays go to Embree
- * as one stream (il_trace_closest_n, then il_trace_occluded_n for the
+ * as one stream (il_trace_closest_n, then il_trace_visibility_n for the
  * shadow rays), in the manner of Laine, Karras & Aila 2013, "Megakernels
  * Considered Harmful: Wavefront Path Tracing on GPUs", here on a CPU: the
  * stream calls are cheaper per ray, and tracing and shading each run as one
@@ -39,7 +39,7 @@ typedef struct pt_wave {
     il_ray rays[IL_PT_WAVE];
     il_hit hits[IL_PT_WAVE];          /* [a] */
     il_surface surf[IL_PT_WAVE];      /* [a] */
-    bool occluded[IL_PT_WAVE];
+    float visible[IL_PT_WAVE];
     il_pt_drawn drawn[IL_PT_WAVE];    /* [a], for the paths that draw samples */
     uint32_t list[2][IL_PT_WAVE];     /* paths drawing 3 pairs, and 4 (with the roulette) */
     uint32_t slot[2][IL_PT_WAVE];     /* their [a] */
@@ -141,9 +141,9 @@ static void run_wave(const pt_method *pm, pt_wave *w, uint32_t n, bool at_sensor
                 w->active[still++] = j;
         }
         if (num_shadow > 0) {
-            il_trace_occluded_n(tr, w->rays, w->occluded, num_shadow);
+            il_trace_visibility_n(tr, w->rays, w->visible, num_shadow);
             for (uint32_t k = 0; k < num_shadow; k++)
-                il_pt_shadow_result(&w->st[w->shadowed[k]], w->occluded[k]);
+                il_pt_shadow_result(&w->st[w->shadowed[k]], w->visible[k]);
         }
         num_active = still;
     }

@@ -134,6 +134,14 @@ static void chunk_close(il_hemicube *hc, il_hc_chunk *ch)
     /* Allow for the rounding of the float test against it. */
     ch->tol = tol + 4e-7 * mag;
 }
+/* A thin pane is not drawn: the hemicube cannot let a fraction of a pixel
+ * through, and a clear pane passes nearly all (the ray-cast form factors
+ * pass its transmittance, trace.c). */
+static bool is_pane(const il_patch_mesh *mesh, uint32_t t)
+{
+    return mesh->tri_panes && mesh->tri_panes[t].ior > 0.0f;
+}
+
 
 static void build_items(il_hemicube *hc)
 {
@@ -154,7 +162,7 @@ static void build_items(il_hemicube *hc)
             surface = pa->surface;
             j++;
         } else {
-            if (mesh->tri_patch[t] != IL_NO_PATCH) {
+            if (mesh->tri_patch[t] != IL_NO_PATCH || is_pane(mesh, t)) {
                 t++;
                 continue;
             }
@@ -217,7 +225,7 @@ il_status il_hemicube_create(const il_patch_mesh *mesh, uint32_t resolution, il_
     uint32_t h = hc->half = resolution / 2;
     size_t num_items = mesh->num_patches;
     for (uint32_t t = 0; t < mesh->num_tris; t++)
-        num_items += mesh->tri_patch[t] == IL_NO_PATCH;
+        num_items += mesh->tri_patch[t] == IL_NO_PATCH && !is_pane(mesh, t);
     size_t cap = num_items ? num_items : 1;
     /* At most one chunk per item; usually ~num_items / 64. */
     hc->top = il_malloc((size_t)h * (h + 1) / 2 * sizeof(float), err);

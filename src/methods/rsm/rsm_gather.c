@@ -81,7 +81,8 @@ il_vec3 il_rsm_texel_light(const il_scene *scene, const il_rsm_texel *t, const i
         const il_tracer *tr = scene->tracer;
         il_ray ray = il_shadow_ray(tr, r->p, r->g, t->p, t->n);
         counts->shadow_rays++;
-        if (il_trace_occluded(tr, &ray))
+        e *= il_trace_visibility(tr, &ray);
+        if (e == 0.0f)
             return v3s(0.0f);
     }
     return v3_scale(v3_mul(f, t->flux), e);
