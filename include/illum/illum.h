@@ -1033,8 +1033,8 @@ il_status il_sun_hours(const il_scene *scene, const il_sensor *sensors, size_t c
 /* The sensors the scene's camera sees in a width x height image (a false-colour
  * illuminance view): for each pixel, row by row from the top, the surface
  * point at the centre of its view, facing the camera (the shading normal,
- * turned to the camera's side).  seen[i] is false, and sensors[i] zero, where
- * the pixel sees no surface. */
+ * turned to the camera's side; a window pane, thin_glass, is looked through).
+ * seen[i] is false, and sensors[i] zero, where the pixel sees no surface. */
 il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t height,
                             il_sensor *sensors, bool *seen, il_error *err);
 

@@ -376,6 +376,8 @@ static void test_refused(void)
     check_refusal(&diffuse, true, false, false, true, "point");
     check_refusal(&mirror, false, false, false, true, "'m'");
     check_refusal(&glass, false, false, false, true, "'g'");
+    il_material_desc pane = {.name = "w", .type = IL_MATERIAL_THIN_GLASS};
+    check_refusal(&pane, false, false, false, false, "'w': thin_glass panes do not run on the GPU");
     check_refusal(&textured, false, false, false, true, "'t'");
     check_refusal(&diffuse, false, true, false, true, "environment");
 }

@@ -17,6 +17,7 @@
  *   from BSDF sampling and from both (MIS): the pane is no vertex, so the
  *   two estimators count the path once between them;
  * - radiosity's direct light passes the pane too (patch_direct);
+ * - the false-colour view's sensors go on the floor behind a pane;
  * - the rays meet panes the same whatever the thread count. */
 #include "pt_scenes.h"
 #include "scene/pane.h"
@@ -257,6 +258,29 @@ static void test_radiosity_sun_through_pane(void)
     il_scene_release(s);
 }
 
+/* The false-colour view's sensors go on what lies behind a pane: every
+ * pixel of a camera looking down through a pane at a floor. */
+static void test_camera_sensors_look_through(void)
+{
+    il_scene *s = new_scene();
+    add_floor(s, 0.0f, 5.0f, add_material(s, (il_material_desc){.diffuse = v3s(0.5f)}));
+    add_floor(s, 1.0f, 5.0f, pane_material(s, 0.3f));
+    CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_DIRECTIONAL,
+                                                    .direction = v3(0, -1, 0), .intensity = v3s(1.0f)},
+                                &g_err), &g_err);
+    set_camera(s, v3(0, 3, 0.001f), v3(0, 0, 0), v3(0, 0, -1), 40.0f);
+    commit(s);
+    il_sensor sn[16 * 16];
+    bool seen[16 * 16];
+    CHECK_OK(il_camera_sensors(s, 16, 16, sn, seen, &g_err), &g_err);
+    int on_floor = 0;
+    for (int i = 0; i < 16 * 16; i++)
+        on_floor += seen[i] && fabsf(sn[i].position.y) < 1e-3f && sn[i].normal.y > 0.99f;
+    printf("camera sensors through a pane: %d of 256 on the floor\n", on_floor);
+    CHECK(on_floor == 256);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_optics();
@@ -266,5 +290,6 @@ int main(void)
     test_camera_through_pane();
     test_strategies_agree();
     test_radiosity_sun_through_pane();
+    test_camera_sensors_look_through();
     return check_report();
 }

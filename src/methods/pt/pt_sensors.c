@@ -13,6 +13,11 @@
 #include "scene/scene.h"
 #include "trace/trace.h"
 
+static bool is_pane(const il_scene *scene, uint32_t mesh)
+{
+    return scene->materials[scene->meshes[mesh].material].type == IL_MATERIAL_THIN_GLASS;
+}
+
 il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t height,
                             il_sensor *sensors, bool *seen, il_error *err)
 {
@@ -34,6 +39,14 @@ il_status il_camera_sensors(const il_scene *scene, uint32_t width, uint32_t heig
                           .tmax = INFINITY};
             il_hit hit;
             seen[i] = il_trace_closest(scene->tracer, &ray, &hit);
+            /* A window pane is looked through: the sensor goes on what lies
+             * behind it (the ray caster lets most rays through, this all). */
+            for (int k = 0; k < 16 && seen[i] && is_pane(scene, hit.mesh); k++) {
+                il_vec3 p = v3_fma(ray.org, ray.dir, hit.t);
+                il_vec3 ng = v3_normalize(hit.ng);
+                ray.org = il_offset_origin(scene->tracer, p, ng, ray.dir);
+                seen[i] = il_trace_closest(scene->tracer, &ray, &hit);
+            }
             sensors[i] = (il_sensor){{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
             if (!seen[i])
                 continue;
