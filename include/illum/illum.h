@@ -507,6 +507,10 @@ typedef struct il_radiosity_stats {
     uint32_t num_surfaces;
     uint32_t steps;            /* shots or sweeps */
     double unshot_fraction;    /* at the end */
+    double view_fraction;      /* shooting, at the end: the largest unshot radiance
+                                  over the mean radiance of what the camera sees
+                                  (0: the camera sees no patch); the solve goes on
+                                  until this too is under the tolerance */
     bool stalled;              /* the solve stopped because unshot_fraction no
                                   longer fell: light that cannot leave the
                                   scene (a closed room of albedo 1) has no

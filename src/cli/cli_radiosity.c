@@ -132,6 +132,7 @@ void cli_radiosity_stats_json(cJSON *parent, const il_radiosity_stats *s)
     cJSON_AddNumberToObject(r, "surfaces", s->num_surfaces);
     cJSON_AddNumberToObject(r, "steps", s->steps);
     cJSON_AddNumberToObject(r, "unshot_fraction", s->unshot_fraction);
+    cJSON_AddNumberToObject(r, "view_fraction", s->view_fraction);
     cJSON_AddBoolToObject(r, "stalled", s->stalled);
     cJSON_AddStringToObject(r, "form_factors", cli_form_factor_name(s->form_factors));
     cJSON_AddNumberToObject(r, "seconds_mesh", s->seconds_mesh);

@@ -40,16 +40,22 @@ static il_status solve_mesh(const il_scene *scene, const il_patch_mesh *mesh,
     }
     if (st == IL_OK)
         st = il_ff_cache_create(mesh->num_patches, settings->ff_cache_bytes, &cache, err);
+    il_rad_settings own = *settings;
+    float *view = NULL;
+    if (st == IL_OK)
+        st = il_rad_view_weights(scene, mesh, 0, 0, &view, err);
+    own.view_weight = view;
     if (st == IL_OK) {
         uint64_t before = stats->peak_bytes;
         stats->peak_bytes = 0;
-        st = il_rad_solve(mesh, ff, cache, settings, sol, stats, err);
+        st = il_rad_solve(mesh, ff, cache, &own, sol, stats, err);
         size_t total = (size_t)stats->peak_bytes + mesh_bytes(mesh) +
                        3 * (size_t)mesh->num_patches * sizeof(il_vec3) + il_ff_cache_bytes(cache);
         stats->peak_bytes = before;
         if (total > *peak)
             *peak = total;
     }
+    free(view);
     if (cache)
         il_ff_cache_release(cache);
     if (ff)
@@ -143,6 +149,7 @@ static il_status run(const il_scene *scene, const il_render_desc *desc,
     rs->num_patches = mesh->num_patches;
     rs->num_surfaces = mesh->num_surfaces;
     rs->unshot_fraction = sol.unshot_fraction;
+    rs->view_fraction = sol.view_fraction;
     rs->peak_bytes = peak;
     stats->seconds = omp_get_wtime() - t_start;
 

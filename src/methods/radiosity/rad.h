@@ -54,6 +54,10 @@ typedef struct il_rad_settings {
      * false stops the solve.  NULL from il_rad_settings_resolve. */
     bool (*on_patches)(const il_patch_mesh *mesh, const float *radiance, void *user);
     void *on_patches_user;
+    /* Per patch, the share of the camera's view it fills (rad_view.c), for
+     * the shooting solver's view measure; NULL: none.  Set by the pipeline
+     * (rad.c) for each mesh it solves. */
+    const float *view_weight;
     uint64_t seed;
     int threads;               /* > 0, resolved */
     /* desc->distrib: the form-factor rows split across processes
@@ -136,6 +140,7 @@ typedef struct il_rad_solution {
     il_vec3 ambient;           /* Cohen et al. 1988 ambient term (display only) */
     uint32_t steps;
     double unshot_fraction;
+    double view_fraction;      /* shooting: the view measure at the end (rad_solve_shoot.c) */
     bool stalled;              /* stopped because the measure no longer fell */
 } il_rad_solution;
 
@@ -148,6 +153,12 @@ void il_rad_solution_free(il_rad_solution *sol);
  * the scene's tracer.  Deterministic in (seed, patch). */
 il_status il_rad_direct(const il_scene *scene, const il_patch_mesh *mesh,
                         const il_rad_settings *settings, il_rad_solution *sol, il_error *err);
+
+/* *weights (NULL when the camera sees no patch): per patch, the share of a
+ * coarse grid of the scene camera's rays (width x height's aspect, 4:3 when
+ * zero) that first hit it (rad_view.c). */
+il_status il_rad_view_weights(const il_scene *scene, const il_patch_mesh *mesh, uint32_t width,
+                              uint32_t height, float **weights, il_error *err);
 
 /* Solves from sol->direct (radiance = unshot = direct at the start) with
  * settings->solver until unshot/initial power < tolerance or max_steps.

@@ -50,21 +50,25 @@ typedef struct shoot_scan {
     uint32_t batch;                       /* shooters wanted (shoot_batch) */
     uint32_t count;
     double unshot_power;                  /* sum_i A_i lum(dL_i) */
+    double unshot_seen;                   /* sum_i g_i lum(dL_i) (view_measure) */
     il_vec3 unshot_sum;                   /* sum_i A_i dL_i per channel */
 } shoot_scan;
 
 /* One pass over the patches: the total unshot power and the patches with the
  * most of it (ties go to the lower index, so the choice is deterministic). */
-static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, shoot_scan *s)
+static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, const float *g,
+                        shoot_scan *s)
 {
     double top[IL_RAD_SHOOT_BATCH_MAX];
     uint32_t batch = s->batch;
-    double sum_r = 0.0, sum_g = 0.0, sum_b = 0.0, total = 0.0;
+    double sum_r = 0.0, sum_g = 0.0, sum_b = 0.0, total = 0.0, seen = 0.0;
     s->count = 0;
     for (uint32_t i = 0; i < mesh->num_patches; i++) {
         double a = mesh->patches[i].area;
         il_vec3 u = unshot[i];
-        double p = a * (double)il_luminance(u);
+        double lu = il_luminance(u), p = a * lu;
+        if (g)
+            seen += g[i] * lu;
         sum_r += a * u.x;
         sum_g += a * u.y;
         sum_b += a * u.z;
@@ -84,6 +88,7 @@ static void scan_unshot(const il_patch_mesh *mesh, const il_vec3 *unshot, shoot_
         s->shooter[k] = i;
     }
     s->unshot_power = total;
+    s->unshot_seen = seen;
     s->unshot_sum = v3((float)sum_r, (float)sum_g, (float)sum_b);
 }
 
@@ -105,6 +110,79 @@ static void shoot(const il_patch_mesh *mesh, const il_ff_row *row, uint32_t i, i
         sol->radiance[j] = v3_add(sol->radiance[j], d);
         sol->unshot[j] = v3_add(sol->unshot[j], d);
     }
+}
+
+/* The view measure (rad_view.c): how much the light still unshot would add
+ * to what the camera sees in one bounce, over what it sees now,
+ *
+ *     sum_i g_i lum(dL_i) / sum_j w_j lum(L_j),   g_i = sum_j w_j lum(rho_j) F_ji,
+ *
+ * with w_j the share of the view patch j fills: a shot of dL_i adds
+ * rho_j F_ji dL_i to patch j (F_ji from j's own form-factor row).  g is the
+ * view's importance (Smits et al. 1992, importance-driven radiosity), made
+ * once from the rows of the patches seen. */
+typedef struct view_measure {
+    uint32_t n;
+    uint32_t *patch;           /* the patches the camera sees */
+    float *weight;             /* their shares of the view */
+    float *g;                  /* per patch: its importance to the view (NULL: no measure) */
+} view_measure;
+
+static void view_free(view_measure *v)
+{
+    free(v->patch);
+    free(v->weight);
+    free(v->g);
+}
+
+static il_status view_make(const il_patch_mesh *mesh, const il_ff *ff, il_ff_cache *cache,
+                           il_rad_rows *rows, const float *weight, il_radiosity_stats *stats,
+                           view_measure *v, il_error *err)
+{
+    memset(v, 0, sizeof *v);
+    if (!weight)
+        return IL_OK;
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < mesh->num_patches; i++)
+        n += weight[i] > 0.0f;
+    v->patch = il_malloc((n ? n : 1) * sizeof *v->patch, err);
+    v->weight = il_malloc((n ? n : 1) * sizeof *v->weight, err);
+    v->g = il_calloc(mesh->num_patches ? mesh->num_patches : 1, sizeof *v->g, err);
+    if (!v->patch || !v->weight || !v->g) {
+        view_free(v);
+        return IL_ERR_MEMORY;
+    }
+    for (uint32_t i = 0; i < mesh->num_patches; i++)
+        if (weight[i] > 0.0f) {
+            v->patch[v->n] = i;
+            v->weight[v->n++] = weight[i];
+        }
+    for (uint32_t base = 0; base < v->n; base += rows->cap) {
+        uint32_t count = v->n - base < rows->cap ? v->n - base : rows->cap;
+        il_status st = il_rad_rows_fetch(rows, ff, cache, v->patch + base, 0, count, stats, err);
+        if (st != IL_OK) {
+            view_free(v);
+            return st;
+        }
+        for (uint32_t k = 0; k < count; k++) {
+            uint32_t j = v->patch[base + k];
+            float c = v->weight[base + k] * il_luminance(mesh->patches[j].rho);
+            const il_ff_row *row = rows->row[k];
+            for (uint32_t e = 0; e < row->count; e++)
+                v->g[row->index[e]] += c * row->value[e];
+        }
+    }
+    return IL_OK;
+}
+
+static double view_fraction(const view_measure *v, const il_vec3 *radiance, double unshot_seen)
+{
+    if (!v->g)
+        return 0.0;
+    double seen = 0.0;
+    for (uint32_t k = 0; k < v->n; k++)
+        seen += v->weight[k] * (double)il_luminance(radiance[v->patch[k]]);
+    return seen > 0.0 ? unshot_seen / seen : 0.0;
 }
 
 /* R = 1 / (1 - rho_avg) per channel (Cohen et al. 1988, eq. 6). */
@@ -162,15 +240,23 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
         return st;
     }
     rows.distrib = settings->distrib;
+    view_measure view;
+    st = view_make(mesh, ff, cache, &rows, settings->view_weight, stats, &view, err);
+    if (st != IL_OK) {
+        il_rad_rows_free(&rows);
+        free(display);
+        return st;
+    }
 
-    scan_unshot(mesh, sol->unshot, &scan);
+    scan_unshot(mesh, sol->unshot, view.g, &scan);
     double frac = p0 > 0.0 ? scan.unshot_power / p0 : 0.0;
+    double vfrac = view_fraction(&view, sol->radiance, scan.unshot_seen);
     uint32_t steps = 0;
     il_rad_stall stall;
     il_rad_stall_start(&stall, n);
     sol->stalled = false;
-    while (p0 > 0.0 && frac >= settings->tolerance && scan.count > 0 &&
-           (settings->max_steps == 0 || steps < settings->max_steps)) {
+    while (p0 > 0.0 && (frac >= settings->tolerance || vfrac >= settings->tolerance) &&
+           scan.count > 0 && (settings->max_steps == 0 || steps < settings->max_steps)) {
         uint32_t batch = scan.count;
         if (settings->max_steps && settings->max_steps - steps < batch)
             batch = settings->max_steps - steps;
@@ -180,23 +266,27 @@ il_status il_rad_solve_shooting(const il_patch_mesh *mesh, const il_ff *ff, il_f
         for (uint32_t k = 0; k < batch; k++)
             shoot(mesh, rows.row[k], scan.shooter[k], sol);
         steps += batch;
-        scan_unshot(mesh, sol->unshot, &scan);
+        scan_unshot(mesh, sol->unshot, view.g, &scan);
         frac = scan.unshot_power / p0;
+        vfrac = view_fraction(&view, sol->radiance, scan.unshot_seen);
         if (settings->on_step &&
             !il_rad_report_step(mesh, settings, sol->radiance,
                                 ambient_term(R, scan.unshot_sum, total_area), display, steps,
                                 frac, omp_get_wtime() - t0))
             break;
-        if (frac >= settings->tolerance && (sol->stalled = il_rad_stalled(&stall, steps, frac)))
+        double measure = frac > vfrac ? frac : vfrac;
+        if (measure >= settings->tolerance && (sol->stalled = il_rad_stalled(&stall, steps, measure)))
             break;
     }
     sol->steps = steps;
     sol->unshot_fraction = frac;
+    sol->view_fraction = vfrac;
     sol->ambient = ambient_term(R, scan.unshot_sum, total_area);
     size_t working = il_rad_rows_bytes(&rows) + (display ? (size_t)n * 3 * sizeof(float) : 0);
     if (working > stats->peak_bytes)
         stats->peak_bytes = working;
     il_rad_rows_free(&rows);
     free(display);
+    view_free(&view);
     return st;
 }
