@@ -34,7 +34,6 @@ il_vec3 il_direct_light(const il_scene *scene, const il_surface *s, const il_bsd
     if (!il_direct_light_sample(scene, s, b, wo, u_select, u, &shadow, &unblocked))
         return v3(0.0f, 0.0f, 0.0f);
     (*rays)++;
-    if (il_trace_occluded(scene->tracer, &shadow))
-        return v3(0.0f, 0.0f, 0.0f);
-    return unblocked;
+    float vis = il_trace_visibility(scene->tracer, &shadow);
+    return vis == 1.0f ? unblocked : v3_scale(unblocked, vis);
 }
