@@ -13,6 +13,7 @@
 #include "image/sky.h"
 #include "scene/sun.h"
 #include "scene/loader.h"
+#include "scene/mesh_open.h"
 #include "scene/scene.h"
 #include "scene/xform.h"
 
@@ -635,6 +636,17 @@ static il_status parse_mesh(jctx *c, const cJSON *mesh, const char *where)
         .indices = m.indices,
         .material = mat,
     };
+    /* A dielectric sheet bends light in and never out, and light samples
+     * cannot pass it: a window is a thin_glass pane.  Said, not changed: the
+     * scene file chose the type (a water surface in a tank is one sheet). */
+    bool open = false;
+    if (mat < c->scene->num_materials && c->scene->materials[mat].type == IL_MATERIAL_DIELECTRIC &&
+        il_mesh_is_open(m.positions, m.num_vertices, m.indices, m.num_triangles, &open, c->err) == IL_OK &&
+        open)
+        il_scene_warn(c->scene, "%s: %s: the dielectric '%s' is on an open mesh (a single sheet): "
+                      "light refracted into it never leaves, and light samples cannot pass it; "
+                      "for a window pane use \"type\": \"thin_glass\"", c->path, where,
+                      c->scene->materials[mat].name);
     uint32_t before = c->scene->num_meshes;
     s = il_load_add_mesh(c->scene, &d, &x, c->err);
     il_shape_free(&m);

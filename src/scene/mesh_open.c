@@ -1,17 +1,20 @@
 /* Open or closed meshes; see mesh_open.h. */
 #include "scene/mesh_open.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* A vertex's position on a grid of a millionth of the mesh's size, so that
+ * corners computed twice (a sphere's poles: r sin(pi) is not 0) match. */
 typedef struct placed {
-    float p[3];
+    int64_t p[3];
     uint32_t v;
 } placed;
 
 static int by_position(const void *a, const void *b)
 {
-    const float *p = ((const placed *)a)->p, *q = ((const placed *)b)->p;
+    const int64_t *p = ((const placed *)a)->p, *q = ((const placed *)b)->p;
     for (int k = 0; k < 3; k++)
         if (p[k] != q[k])
             return p[k] < q[k] ? -1 : 1;
@@ -40,9 +43,18 @@ il_status il_mesh_is_open(const float *positions, uint32_t num_vertices, const u
         return IL_ERR_MEMORY;
     }
     /* One id per distinct position: the first vertex of its run in sorted order. */
-    for (uint32_t v = 0; v < num_vertices; v++)
-        order[v] = (placed){{positions[3 * (size_t)v], positions[3 * (size_t)v + 1],
-                             positions[3 * (size_t)v + 2]}, v};
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < 3 * (size_t)num_vertices; i++) {
+        lo[i % 3] = fmin(lo[i % 3], positions[i]);
+        hi[i % 3] = fmax(hi[i % 3], positions[i]);
+    }
+    double size = fmax(fmax(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+    double cell = size > 0.0 && isfinite(size) ? size * 1e-6 : 1.0;
+    for (uint32_t v = 0; v < num_vertices; v++) {
+        order[v].v = v;
+        for (int k = 0; k < 3; k++)
+            order[v].p[k] = (int64_t)llround((positions[3 * (size_t)v + k] - lo[k]) / cell);
+    }
     qsort(order, num_vertices, sizeof *order, by_position);
     for (uint32_t i = 0; i < num_vertices; i++)
         canon[order[i].v] = i > 0 && by_position(&order[i - 1], &order[i]) == 0 ? canon[order[i - 1].v]

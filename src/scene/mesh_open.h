@@ -8,8 +8,9 @@
 #include "core/error.h"
 
 /* True in *open when some edge belongs to one triangle only.  Vertices are
- * matched by position (a closed box with per-face normals repeats its
- * corners), so only the geometry counts.  positions: 3 floats per vertex;
+ * matched by position, to a millionth of the mesh's size (a closed box with
+ * per-face normals repeats its corners, a sphere's poles are computed once
+ * per segment), so only the geometry counts.  positions: 3 floats per vertex;
  * indices: 3 per triangle, each below num_vertices. */
 il_status il_mesh_is_open(const float *positions, uint32_t num_vertices, const uint32_t *indices,
                           uint32_t num_triangles, bool *open, il_error *err);

@@ -452,6 +452,18 @@ static void test_warnings_and_fallbacks(void)
     CHECK(il_scene_commit(s, &err) == IL_ERR_INVALID);
     CHECK(err.message[0] != '\0');
     il_scene_release(s);
+
+    /* A dielectric sheet (a quad) is warned about, as a window should be a
+     * pane; a dielectric solid (a box, a sphere) is not. */
+    s = load_json_ok("sheet.json", "{\"materials\": {\"g\": {\"type\": \"dielectric\"}},\n"
+        "\"meshes\": [{\"shape\": \"quad\", \"material\": \"g\"}, {\"shape\": \"box\", \"material\": \"g\"},\n"
+        "             {\"shape\": \"sphere\", \"material\": \"g\"}]}\n");
+    if (!s)
+        return;
+    il_scene_get_info(s, &info);
+    CHECK(info.num_warnings == 1);
+    CHECK(any_warning_contains(s, "sheet.json: meshes[0]: the dielectric 'g' is on an open mesh"));
+    il_scene_release(s);
 }
 
 /* The example scenes that ship in scenes/ load and commit. */
