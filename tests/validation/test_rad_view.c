@@ -6,7 +6,7 @@
  * 28% darker than the path tracer.  The solve now also goes on until the
  * light still unshot would add less than the tolerance to what the camera
  * sees, and the room is within 8% of the path tracer (at the default,
- * coarse patches of about 1.3 m: measured 4.5% low).  Scenes whose global
+ * coarse patches of about 1.3 m: measured 2-5% low).  Scenes whose global
  * measure already covers the view shoot the same steps as before, so their
  * images do not change (the Cornell box's solve still ends on the global
  * measure, just under 1%). */
