@@ -181,6 +181,7 @@ typedef struct il_scene_info {
     uint32_t num_textures;
     uint32_t num_lights;         /* point/spot/directional lights */
     uint64_t num_emissive_triangles;
+    uint32_t num_panes;          /* meshes of a THIN_GLASS material (window panes) */
     bool has_environment;
     bool has_camera;             /* false until commit adds the default camera */
     il_vec3 bounds_min, bounds_max;

@@ -60,6 +60,9 @@ int cmd_info(int argc, char **argv)
            (unsigned long long)in.num_emissive_triangles, (unsigned long long)in.dropped_triangles);
     printf("materials:  %u (including the default)\n", in.num_materials);
     printf("textures:   %u\n", in.num_textures);
+    if (in.num_panes)
+        printf("panes:      %u mesh%s of thin_glass (window panes: light passes them on a straight line)\n",
+               in.num_panes, in.num_panes == 1 ? "" : "es");
     printf("lights:     %u point/spot/directional, %llu emissive triangles%s\n", in.num_lights,
            (unsigned long long)in.num_emissive_triangles, in.has_environment ? ", environment" : "");
     il_sky_desc sky;

@@ -562,6 +562,7 @@ void il_scene_get_info(const il_scene *s, il_scene_info *o)
         o->num_triangles += m->num_triangles;
         if (!v3_is_zero(s->materials[m->material].emission))
             o->num_emissive_triangles += m->num_triangles;
+        o->num_panes += s->materials[m->material].type == IL_MATERIAL_THIN_GLASS;
         for (uint32_t t = 0; t < 3 * m->num_triangles; t++) {
             il_vec3 p = m->positions[m->indices[t]];
             lo = v3_min(lo, p);

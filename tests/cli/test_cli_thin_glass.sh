@@ -25,6 +25,8 @@ checks=$((checks + 1))
 awk -v g="$glazed" -v o="$open" 'BEGIN { r = g / o; exit !(o > 2 && r > 0.80 && r < 0.93) }' ||
     fail "daylight factor glazed $glazed% against open $open%: expected 0.80-0.93 of it"
 
+expect_exit 0 "info" -- "$ILLUM" info "$ROOM"
+expect_stdout "panes:      1 mesh of thin_glass" "info: the pane"
 expect_exit 0 "render" -- "$ILLUM" render "$ROOM" --spp 4 --width 64 --height 48 -o room.exr
 expect_file room.exr "render: the image"
 
