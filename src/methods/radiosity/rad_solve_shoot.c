@@ -7,7 +7,9 @@
  * "shooting"; with reciprocity A_j F_ji = A_i F_ij):
  *     dL_j += rho_j * F_ji * dL_i = rho_j * F_ij * (A_i / A_j) * dL_i,
  * and sets dL_i = 0.  The patches with the most unshot power A_i lum(dL_i)
- * go first (section 3.1, "sorting").
+ * go first (section 3.1, "sorting").  The solve ends when the unshot power
+ * is under the tolerance of the initial power and, with view weights, the
+ * view measure (view_fraction below) is under it too.
  *
  * Parallelism and determinism: each step takes a batch of shooters whose
  * size depends on the patch count only (shoot_batch), computes their rows
