@@ -19,8 +19,10 @@
  * - the direct light of radiosity, photon mapping, SPPM and the RSM passes
  *   the pane too;
  * - the false-colour view's sensors go on the floor behind a pane;
+ * - the Linespace's in-shaft occlusion test lets a pane through;
  * - the rays meet panes the same whatever the thread count. */
 #include "pt_scenes.h"
+#include "methods/linespace/ls.h"
 #include "scene/pane.h"
 #include "scene/scene.h"
 
@@ -291,6 +293,34 @@ static void test_camera_sensors_look_through(void)
     il_scene_release(s);
 }
 
+/* The Linespace's in-shaft occlusion test lets a pane through (its
+ * candidate lists leave panes out), as il_trace_occluded does; a diffuse
+ * sheet in the same place blocks. */
+static void test_linespace_shafts(void)
+{
+    for (int pane = 0; pane < 2; pane++) {
+        il_scene *s = new_scene();
+        uint32_t grey = add_material(s, (il_material_desc){.diffuse = v3s(0.5f)});
+        add_floor(s, 0.0f, 1.0f, grey);
+        add_floor(s, 0.3f, 1.0f, pane ? pane_material(s, 0.0f) : grey);
+        CHECK_OK(il_scene_add_light(s, &(il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 0.9f, 0),
+                                                        .intensity = v3s(1.0f)}, &g_err), &g_err);
+        commit(s);
+        il_linespace ls;
+        il_ls_settings set = {.grid = 2, .n = 2};
+        CHECK_OK(il_ls_build(s, &set, 1, &ls, &g_err), &g_err);
+        /* Up from the floor's middle, slightly slanted, through the sheet
+         * at y = 0.3 inside the floor's voxel (the grid's voxels are 1 m). */
+        bool blocked = il_ls_occluded(&ls, s, v3(0.2f, 0.0f, 0.2f), v3_normalize(v3(0.1f, 1.0f, 0.05f)),
+                                      0, 0, NULL);
+        printf("linespace shaft through a %s: %s\n", pane ? "pane" : "diffuse sheet",
+               blocked ? "blocked" : "clear");
+        CHECK(blocked == !pane);
+        il_ls_free(&ls);
+        il_scene_release(s);
+    }
+}
+
 int main(void)
 {
     test_optics();
@@ -301,5 +331,6 @@ int main(void)
     test_strategies_agree();
     test_methods_sun_through_pane();
     test_camera_sensors_look_through();
+    test_linespace_shafts();
     return check_report();
 }

@@ -250,6 +250,11 @@ static il_status bin_triangles(const il_scene *scene, il_linespace *ls, uint32_t
     for (int pass = 0; pass < 2; pass++) {
         for (uint32_t m = 0; m < scene->num_meshes; m++) {
             const il_mesh *mesh = &scene->meshes[m];
+            /* A window pane is no occluder to a shaft: light passes it on a
+             * straight line (trace.c), so the in-shaft test lets it through,
+             * as il_trace_occluded does for shafts without candidate lists. */
+            if (scene->materials[mesh->material].type == IL_MATERIAL_THIN_GLASS)
+                continue;
             for (uint32_t t = 0; t < mesh->num_triangles; t++) {
                 const il_tri_geom *g = &mesh->geom[t];
                 il_vec3 v[3] = {g->p0, g->p1, g->p2};
