@@ -66,15 +66,17 @@ typedef struct pane_log {
     uint32_t num_met[STREAM_CHUNK];
 } pane_log;
 
+/* met and num_met: the crossings' log of the query's rays (NULL for
+ * PANE_CLEAR, which logs none). */
 static void query_init(query_ctx *q, enum RTCIntersectContextFlags flags, pane_mode mode,
-                       pane_log *log)
+                       pane_met (*met)[PANES_MET], uint32_t *num_met)
 {
     rtcInitIntersectContext(&q->rtc);
     q->rtc.flags = flags;
     q->mode = mode;
     q->vis = NULL;
-    q->met = log ? log->met : NULL;
-    q->num_met = log ? log->num_met : NULL;
+    q->met = met;
+    q->num_met = num_met;
 }
 
 static const pane_met *met_before(const query_ctx *q, uint32_t k, uint32_t geom, float t)
@@ -350,9 +352,7 @@ bool il_trace_closest(const il_tracer *t, const il_ray *ray, il_hit *hit)
 {
     pane_log1 log = {.num_met = {0}};
     query_ctx ctx;
-    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_DRAW, NULL);
-    ctx.met = log.met;
-    ctx.num_met = log.num_met;
+    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_DRAW, log.met, log.num_met);
     struct RTCRayHit rh;
     to_rtc_ray(ray, &rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -364,7 +364,7 @@ bool il_trace_closest(const il_tracer *t, const il_ray *ray, il_hit *hit)
 bool il_trace_occluded(const il_tracer *t, const il_ray *ray)
 {
     query_ctx ctx;
-    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_CLEAR, NULL);
+    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_CLEAR, NULL, NULL);
     struct RTCRay r;
     to_rtc_ray(ray, &r);
     rtcOccluded1(t->scene, &ctx.rtc, &r);
@@ -376,9 +376,7 @@ float il_trace_visibility(const il_tracer *t, const il_ray *ray)
     pane_log1 log = {.num_met = {0}};
     float vis = 1.0f;
     query_ctx ctx;
-    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_WEIGH, NULL);
-    ctx.met = log.met;
-    ctx.num_met = log.num_met;
+    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_WEIGH, log.met, log.num_met);
     ctx.vis = &vis;
     struct RTCRay r;
     to_rtc_ray(ray, &r);
@@ -391,7 +389,7 @@ static void closest_n(const il_tracer *t, const il_ray *rays, il_hit *hits, size
 {
     pane_log log;
     query_ctx ctx;
-    query_init(&ctx, flags, PANE_DRAW, &log);
+    query_init(&ctx, flags, PANE_DRAW, log.met, log.num_met);
     struct RTCRayHit rh[STREAM_CHUNK];
     for (size_t base = 0; base < n; base += STREAM_CHUNK) {
         unsigned m = (unsigned)((n - base) < STREAM_CHUNK ? (n - base) : STREAM_CHUNK);
@@ -422,7 +420,7 @@ void il_trace_closest_n_coherent(const il_tracer *t, const il_ray *rays, il_hit 
 void il_trace_occluded_n(const il_tracer *t, const il_ray *rays, bool *occluded, size_t n)
 {
     query_ctx ctx;
-    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_CLEAR, NULL);
+    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_CLEAR, NULL, NULL);
     struct RTCRay r[STREAM_CHUNK];
     for (size_t base = 0; base < n; base += STREAM_CHUNK) {
         unsigned m = (unsigned)((n - base) < STREAM_CHUNK ? (n - base) : STREAM_CHUNK);
@@ -438,7 +436,7 @@ void il_trace_visibility_n(const il_tracer *t, const il_ray *rays, float *vis, s
 {
     pane_log log;
     query_ctx ctx;
-    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_WEIGH, &log);
+    query_init(&ctx, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, PANE_WEIGH, log.met, log.num_met);
     struct RTCRay r[STREAM_CHUNK];
     for (size_t base = 0; base < n; base += STREAM_CHUNK) {
         unsigned m = (unsigned)((n - base) < STREAM_CHUNK ? (n - base) : STREAM_CHUNK);

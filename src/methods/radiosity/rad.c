@@ -43,7 +43,7 @@ static il_status solve_mesh(const il_scene *scene, const il_patch_mesh *mesh,
     il_rad_settings own = *settings;
     float *view = NULL;
     if (st == IL_OK)
-        st = il_rad_view_weights(scene, mesh, 0, 0, &view, err);
+        st = il_rad_view_weights(scene, mesh, &view, err);
     own.view_weight = view;
     if (st == IL_OK) {
         uint64_t before = stats->peak_bytes;

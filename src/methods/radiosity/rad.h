@@ -155,10 +155,9 @@ il_status il_rad_direct(const il_scene *scene, const il_patch_mesh *mesh,
                         const il_rad_settings *settings, il_rad_solution *sol, il_error *err);
 
 /* *weights (NULL when the camera sees no patch): per patch, the share of a
- * coarse grid of the scene camera's rays (width x height's aspect, 4:3 when
- * zero) that first hit it (rad_view.c). */
-il_status il_rad_view_weights(const il_scene *scene, const il_patch_mesh *mesh, uint32_t width,
-                              uint32_t height, float **weights, il_error *err);
+ * coarse 4:3 grid of the scene camera's rays that first hit it (rad_view.c). */
+il_status il_rad_view_weights(const il_scene *scene, const il_patch_mesh *mesh, float **weights,
+                              il_error *err);
 
 /* Solves from sol->direct (radiance = unshot = direct at the start) with
  * settings->solver until unshot/initial power < tolerance or max_steps.

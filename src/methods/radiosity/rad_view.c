@@ -17,19 +17,18 @@
 #include "scene/camera.h"
 #include "trace/trace.h"
 
-enum { VIEW_RAYS_ACROSS = 64 };
+/* A 4:3 grid: the solve does not know the film's size (the same solution
+ * serves any), and a coarse view is all the measure needs. */
+enum { VIEW_RAYS_ACROSS = 64, VIEW_RAYS_DOWN = 48 };
 
-il_status il_rad_view_weights(const il_scene *scene, const il_patch_mesh *mesh, uint32_t width,
-                              uint32_t height, float **out, il_error *err)
+il_status il_rad_view_weights(const il_scene *scene, const il_patch_mesh *mesh, float **out,
+                              il_error *err)
 {
     *out = NULL;
     il_camera_desc d;
     if (!il_scene_get_camera(scene, &d) || mesh->num_patches == 0)
         return IL_OK;
-    /* The film's aspect (4:3 when not given) on a grid 64 rays across. */
-    double aspect = width && height ? (double)height / width : 0.75;
-    uint32_t gw = VIEW_RAYS_ACROSS, gh = (uint32_t)(VIEW_RAYS_ACROSS * aspect + 0.5);
-    gh = gh < 1 ? 1 : gh > 4 * VIEW_RAYS_ACROSS ? 4 * VIEW_RAYS_ACROSS : gh;
+    const uint32_t gw = VIEW_RAYS_ACROSS, gh = VIEW_RAYS_DOWN;
     il_camera cam;
     il_camera_init(&cam, &d, gw, gh);
     float *w = il_calloc(mesh->num_patches, sizeof *w, err);
