@@ -183,6 +183,8 @@ typedef struct il_scene_info {
     uint64_t num_emissive_triangles;
     uint32_t num_panes;          /* meshes of a THIN_GLASS material (window panes) */
     bool has_environment;
+    uint32_t num_portal_triangles; /* the environment's portals (il_scene_add_portal) */
+    float portal_area;           /* their total area, m^2 */
     bool has_camera;             /* false until commit adds the default camera */
     il_vec3 bounds_min, bounds_max;
     uint64_t dropped_triangles;  /* NaN/Inf or degenerate, dropped on load */
@@ -215,6 +217,18 @@ il_status il_scene_set_camera(il_scene *scene, const il_camera_desc *desc, il_er
 bool il_scene_get_camera(const il_scene *scene, il_camera_desc *out);
 il_status il_scene_set_environment(il_scene *scene, const il_environment_desc *desc,
                                    il_error *err);
+/* Adds an environment portal: an opening (a window, a skylight) through
+ * which the environment's light enters.  num_triangles triangles, their
+ * corners corners[3t], corners[3t+1], corners[3t+2] counter-clockwise seen
+ * from the side they light (inside the room).  From points on that side
+ * most environment light samples are aimed through the portals, which
+ * makes interiors lit by a sky far less noisy; the image converges to the
+ * same values with or without them.  Not geometry: rays pass portals, and
+ * a window's glass is a separate mesh.  Portals outlive a change of
+ * environment.  Before commit; an error for a degenerate triangle
+ * (docs/scene-format.md, "Portals"). */
+il_status il_scene_add_portal(il_scene *scene, const il_vec3 *corners, uint32_t num_triangles,
+                              il_error *err);
 
 /* Validates the scene (an error when it has no triangle or no light), adds a
  * camera framing its bounds from +z when it has none (see docs/cli.md), builds

@@ -65,6 +65,9 @@ int cmd_info(int argc, char **argv)
                in.num_panes, in.num_panes == 1 ? "" : "es");
     printf("lights:     %u point/spot/directional, %llu emissive triangles%s\n", in.num_lights,
            (unsigned long long)in.num_emissive_triangles, in.has_environment ? ", environment" : "");
+    if (in.num_portal_triangles)
+        printf("portals:    %u triangle%s, %.3g m^2 (the environment's light is sampled through them)\n",
+               in.num_portal_triangles, in.num_portal_triangles == 1 ? "" : "s", (double)in.portal_area);
     il_sky_desc sky;
     if (il_scene_get_daylight(scene, &sky)) {
         if (sky.cie_type == 0)

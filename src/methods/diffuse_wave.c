@@ -404,7 +404,7 @@ static il_lrec_kind fill_light(const il_scene *s, const il_diffuse_in *in, lanes
         /* il_light_sample_at's draw: the direction, its radiance and pdf. */
         float pdf_dir;
         il_vec3 wi;
-        put3(l->rad, k, il_environment_sample(s, in->u_light, &wi, &pdf_dir));
+        put3(l->rad, k, il_environment_sample_at(s, in->surf->p, in->u_light, &wi, &pdf_dir));
         put3(l->q0, k, wi);
         l->pmf[k] = r->pmf * pdf_dir;
     } else if (r->kind == IL_LREC_DIRECTIONAL && r->cos_cutoff < 1.0f) {

@@ -16,8 +16,10 @@
  *                 (il_directional_sample), one per point;
  *   sky:          E = int L(w) cos dw = pi * mean of L over cosine-distributed
  *                 directions that escape the scene (pbrt-v4 A.5.3); with an
- *                 environment map, cosine and map-importance samples
- *                 combined by MIS (sky_map_irradiance). */
+ *                 environment map or portals, cosine and environment
+ *                 samples (il_environment_sample_at: through the portals
+ *                 from a point they light) combined by MIS
+ *                 (sky_map_irradiance). */
 #include <math.h>
 
 #include "core/rng.h"
@@ -125,9 +127,10 @@ void il_patch_direct_kinds(const il_scene *scene, bool *delta, bool *sky)
     *sky = scene->has_environment;
 }
 
-/* Irradiance from an environment map (sums of L cos / pdf, times the
- * power-heuristic weight): half the rays cosine-distributed, half drawn
- * from the map's importance-sampling tables, combined by multiple
+/* Irradiance from an environment map or through portals (sums of L cos /
+ * pdf, times the power-heuristic weight): half the rays cosine-distributed,
+ * half drawn by il_environment_sample_at (the map's importance-sampling
+ * tables, the portals), combined by multiple
  * importance sampling (Veach 1997, 9.2; equal counts, so the plain power
  * heuristic), so that a small bright sun is found as surely as a broad sky.
  * Jittered 8 x 4 strata for each technique, rays shared among the points. */
@@ -143,14 +146,15 @@ static il_vec3 sky_map_irradiance(const il_scene *scene, const il_vec3 *points, 
         uy = il_minf(uy, 0x1.fffffep-1f);
         il_vec3 dir, L;
         float pdf_cos, pdf_env, cos_n;
+        il_vec3 p = points[(r * IL_DIRECT_POINTS) / IL_SKY_RAYS];
         if (r < half) {
             dir = il_frame_to_world(&f, il_sample_cosine_hemisphere(v2(ux, uy)));
             cos_n = v3_dot(dir, n);
             pdf_cos = il_cosine_hemisphere_pdf(cos_n);
-            pdf_env = il_environment_pdf(scene, dir);
+            pdf_env = il_environment_pdf_at(scene, p, dir);
             L = il_environment_radiance(scene, dir);
         } else {
-            L = il_environment_sample(scene, v2(ux, uy), &dir, &pdf_env);
+            L = il_environment_sample_at(scene, p, v2(ux, uy), &dir, &pdf_env);
             cos_n = v3_dot(dir, n);
             pdf_cos = cos_n > 0.0f ? il_cosine_hemisphere_pdf(cos_n) : 0.0f;
         }
@@ -158,7 +162,6 @@ static il_vec3 sky_map_irradiance(const il_scene *scene, const il_vec3 *points, 
         if (!(cos_n > 0.0f) || !(pdf > 0.0f) || v3_is_zero(L))
             continue;
         float w = r < half ? il_power_heuristic(pdf_cos, pdf_env) : il_power_heuristic(pdf_env, pdf_cos);
-        il_vec3 p = points[(r * IL_DIRECT_POINTS) / IL_SKY_RAYS];
         il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, dir), .tmin = 0.0f, .dir = dir,
                       .tmax = INFINITY};
         sum = v3_fma(sum, L, w * cos_n / pdf * il_trace_visibility(scene->tracer, &ray));
@@ -189,7 +192,7 @@ il_vec3 il_patch_direct_irradiance(const il_scene *scene, const il_vec3 *corners
             e = v3_fma(e, delta_irradiance(scene, points[k], n, v2(ux, uy)), weights[k]);
         }
     }
-    if (sky && scene->envmap) {
+    if (sky && (scene->envmap || scene->num_portals)) {
         e = v3_add(e, sky_map_irradiance(scene, points, n, &rng));
     } else if (sky) {
         /* Cosine-distributed directions, jittered 8 x 8 strata, four per

@@ -2,6 +2,7 @@
  * Jakob, Humphreys 2023) chapter 12 "Light Sources"; power-proportional light
  * selection is its PowerLightSampler (12.6.2). */
 #include "scene/lights.h"
+#include "scene/portal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -380,7 +381,7 @@ bool il_light_sample_at(const il_scene *s, il_vec3 p, float u_select, il_vec2 u,
     }
     case IL_LIGHTK_ENVIRONMENT: {
         float pdf_dir;
-        out->radiance = il_environment_sample(s, u, &out->wi, &pdf_dir);
+        out->radiance = il_environment_sample_at(s, p, u, &out->wi, &pdf_dir);
         out->dist = INFINITY;
         out->pdf = pmf * pdf_dir;
         return out->pdf > 0.0f;
@@ -401,11 +402,11 @@ float il_light_pdf_area(const il_scene *s, uint32_t light, il_vec3 p, il_vec3 p_
     return s->light_pmf[light] * area_to_solid_angle(s->lights[light].area, dist2, cos_l);
 }
 
-float il_light_pdf_environment(const il_scene *s, il_vec3 dir)
+float il_light_pdf_environment(const il_scene *s, il_vec3 p, il_vec3 dir)
 {
     if (s->environment_light == IL_NO_LIGHT)
         return 0.0f;
-    return s->light_pmf[s->environment_light] * il_environment_pdf(s, dir);
+    return s->light_pmf[s->environment_light] * il_environment_pdf_at(s, p, dir);
 }
 
 il_vec3 il_environment_sample(const il_scene *s, il_vec2 u, il_vec3 *dir, float *pdf)
@@ -426,4 +427,41 @@ float il_environment_pdf(const il_scene *s, il_vec3 dir)
     if (s->envmap)
         return il_envmap_pdf(s->envmap, dir);
     return IL_INV_4PI;
+}
+
+/* The mixture of portal.h: a share IL_PORTAL_SHARE of the draws through the
+ * portals lighting p, the rest from il_environment_sample, and the density
+ * of the mixture for either (one-sample MIS, balance heuristic). */
+static float mixture_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
+{
+    return IL_PORTAL_SHARE * il_portal_pdf(s, p, seen, dir) +
+           (1.0f - IL_PORTAL_SHARE) * il_environment_pdf(s, dir);
+}
+
+il_vec3 il_environment_sample_at(const il_scene *s, il_vec3 p, il_vec2 u, il_vec3 *dir, float *pdf)
+{
+    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
+    if (!(seen > 0.0f))
+        return il_environment_sample(s, u, dir, pdf);
+    il_vec3 L;
+    if (u.x < IL_PORTAL_SHARE) {
+        u.x = il_minf(u.x / IL_PORTAL_SHARE, 0x1.fffffep-1f);
+        if (!il_portal_sample(s, p, seen, u, dir)) {
+            *pdf = 0.0f;
+            return v3s(0.0f);
+        }
+        L = il_environment_radiance(s, *dir);
+    } else {
+        u.x = il_minf((u.x - IL_PORTAL_SHARE) / (1.0f - IL_PORTAL_SHARE), 0x1.fffffep-1f);
+        float pdf_env;
+        L = il_environment_sample(s, u, dir, &pdf_env);
+    }
+    *pdf = mixture_pdf(s, p, seen, *dir);
+    return L;
+}
+
+float il_environment_pdf_at(const il_scene *s, il_vec3 p, il_vec3 dir)
+{
+    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
+    return seen > 0.0f ? mixture_pdf(s, p, seen, dir) : il_environment_pdf(s, dir);
 }

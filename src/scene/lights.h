@@ -43,8 +43,9 @@ bool il_light_sample_at(const il_scene *scene, il_vec3 p, float u_select, il_vec
  * n_light) on area light `light` from p: used for MIS when a BSDF ray hits an emitter. */
 float il_light_pdf_area(const il_scene *scene, uint32_t light, il_vec3 p, il_vec3 p_light,
                         il_vec3 n_light);
-/* Solid-angle pdf of sampling direction dir towards the environment. */
-float il_light_pdf_environment(const il_scene *scene, il_vec3 dir);
+/* Solid-angle pdf of il_light_sample_at choosing direction dir towards the
+ * environment from p (the point matters when the scene has portals). */
+float il_light_pdf_environment(const il_scene *scene, il_vec3 p, il_vec3 dir);
 
 /* Radiance leaving an emissive surface with geometric normal ng towards w. */
 il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w);
@@ -58,5 +59,13 @@ il_vec3 il_environment_radiance(const il_scene *scene, il_vec3 dir);
 il_vec3 il_environment_sample(const il_scene *scene, il_vec2 u, il_vec3 *dir, float *pdf);
 /* The solid-angle density of il_environment_sample choosing dir. */
 float il_environment_pdf(const il_scene *scene, il_vec3 dir);
+/* The environment sampled from the point p: as il_environment_sample, but
+ * when p is on the lit side of a portal (scene/portal.h) a share of the
+ * draws is aimed through the portals, and *pdf is the mixture's density.
+ * What il_light_sample_at draws for the environment. */
+il_vec3 il_environment_sample_at(const il_scene *scene, il_vec3 p, il_vec2 u, il_vec3 *dir,
+                                 float *pdf);
+/* The solid-angle density of il_environment_sample_at choosing dir from p. */
+float il_environment_pdf_at(const il_scene *scene, il_vec3 p, il_vec3 dir);
 
 #endif

@@ -800,6 +800,75 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
     return IL_OK;
 }
 
+/* One of "environment.portals": a "quad" shape or inline "positions" and
+ * "indices", with a transform, lighting the side its front faces ("flip"
+ * turns it); a quad faces +y before its transform. */
+static il_status parse_portal(jctx *c, const cJSON *portal, const char *where)
+{
+    static const char *const keys[] = {"shape", "size", "positions", "indices", "flip", "transform",
+                                       "matrix", NULL};
+    il_status s = expect_object(c, portal, where);
+    if (s != IL_OK)
+        return s;
+    check_keys(c, portal, where, keys);
+    const char *shape = NULL;
+    bool flip = false;
+    if ((s = get_string(c, portal, "shape", where, &shape)) != IL_OK ||
+        (s = get_bool(c, portal, "flip", where, &flip)) != IL_OK)
+        return s;
+    bool inl = cJSON_GetObjectItemCaseSensitive(portal, "positions") != NULL;
+    if ((shape != NULL) + inl != 1)
+        return bad(c, where, "expected exactly one of \"shape\": \"quad\" or \"positions\"");
+    if (shape && strcmp(shape, "quad") != 0) {
+        char w[WHERE_MAX];
+        child_key(w, where, "shape");
+        return bad(c, w, "a portal is a \"quad\" (or inline \"positions\" and \"indices\")");
+    }
+    il_xform x;
+    if ((s = parse_transform(c, portal, where, &x)) != IL_OK)
+        return s;
+    il_shape_mesh m;
+    s = shape ? shape_mesh(c, portal, where, shape, &m) : inline_mesh(c, portal, where, &m);
+    if (s != IL_OK)
+        return s;
+    if (flip)
+        il_shape_flip(&m);
+    il_vec3 *corners = il_malloc(sizeof *corners * 3 * (size_t)m.num_triangles, c->err);
+    if (!corners) {
+        il_shape_free(&m);
+        return IL_ERR_MEMORY;
+    }
+    for (size_t k = 0; k < 3 * (size_t)m.num_triangles; k++) {
+        const float *q = m.positions + 3 * (size_t)m.indices[k];
+        corners[k] = il_xform_point(&x, q[0], q[1], q[2]);
+    }
+    s = il_scene_add_portal(c->scene, corners, m.num_triangles, c->err);
+    free(corners);
+    il_shape_free(&m);
+    return s == IL_OK ? IL_OK : il_load_prefix_error(c->err, s, c->path, where);
+}
+
+/* "environment.portals": an array of portals (scene/portal.h). */
+static il_status parse_portals(jctx *c, const cJSON *env)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(env, "portals");
+    if (!v)
+        return IL_OK;
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) == 0)
+        return bad(c, "environment.portals", "expected a non-empty array [...] of portals");
+    int i = 0;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, v)
+    {
+        char w[WHERE_MAX];
+        child_index(w, "environment.portals", i++);
+        il_status s = parse_portal(c, it, w);
+        if (s != IL_OK)
+            return s;
+    }
+    return IL_OK;
+}
+
 /* "environment": a constant "radiance", or a "map" (an image file relative
  * to the JSON file) with its "mapping" (default: from the image's shape,
  * image/envmap.h), "rotation" in degrees and "intensity"
@@ -808,11 +877,13 @@ static il_status parse_environment(jctx *c, const cJSON *env)
 {
     static const char *const keys[] = {"radiance", "map", "mapping", "rotation", "intensity", "sky",
                                        "sky_lux", "ground_albedo", "sun", "north", "sun_lux",
-                                       "sun_diameter", NULL};
+                                       "sun_diameter", "portals", NULL};
     il_status s = expect_object(c, env, "environment");
     if (s != IL_OK)
         return s;
     check_keys(c, env, "environment", keys);
+    if ((s = parse_portals(c, env)) != IL_OK)
+        return s;
     const char *sky = NULL;
     if ((s = get_string(c, env, "sky", "environment", &sky)) != IL_OK)
         return s;

@@ -1,6 +1,7 @@
 /* Building the in-memory scene: il_scene_create / add_* / commit / release. */
 #include "scene/scene.h"
 #include "scene/pane.h"
+#include "scene/portal.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -553,6 +554,9 @@ void il_scene_get_info(const il_scene *s, il_scene_info *o)
     o->num_textures = s->num_textures;
     o->num_lights = s->num_user_lights;
     o->has_environment = s->has_environment;
+    o->num_portal_triangles = s->num_portals;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        o->portal_area += s->portals[i].area;
     o->has_camera = s->camera.present;
     o->dropped_triangles = s->dropped_triangles;
     o->num_warnings = s->num_warnings;
@@ -599,6 +603,7 @@ void il_scene_release(il_scene *s)
         free(s->textures[i].rgb);
     free(s->textures);
     free(s->user_lights);
+    free(s->portals);
     free_envmap(s);
     for (uint32_t i = 0; i < s->num_warnings; i++)
         free(s->warnings[i]);

@@ -14,6 +14,7 @@
 
 typedef struct il_tracer il_tracer;
 typedef struct il_envmap il_envmap;
+typedef struct il_portal il_portal;
 
 /* Per-triangle geometry that il_scene_commit precomputes for the surface
  * queries (il_scene_surface, il_scene_point): the three corners and their
@@ -137,6 +138,8 @@ struct il_scene {
     il_envmap *envmap;      /* the environment map with its sampling tables (image/envmap.h);
                                NULL for a constant sky */
     bool has_environment;   /* a constant sky of nonzero radiance, or a map with some light */
+    il_portal *portals;     /* the environment's portals, one per triangle (scene/portal.h) */
+    uint32_t num_portals;
 
     char **warnings;        uint32_t num_warnings, cap_warnings;
     uint64_t dropped_triangles;

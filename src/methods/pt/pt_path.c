@@ -64,7 +64,7 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
         if (!v3_is_zero(le)) {
             float w = st->specular ? 1.0f
                                    : mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf,
-                                                il_light_pdf_environment(s, st->ray.dir));
+                                                il_light_pdf_environment(s, st->prev_p, st->ray.dir));
             st->L = add_scaled(st->L, st->beta, le, w);
         }
         return false;

@@ -1,0 +1,123 @@
+/* Environment portals: sampling a direction through them and its density
+ * (see portal.h). */
+#include "scene/portal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "core/sampling.h"
+#include "core/error.h"
+#include "scene/scene.h"
+
+/* p lies on the lit side of portal q: strictly, so a point on the portal's
+ * own plane (the wall around a window) is not lit through it. */
+static bool lights(const il_portal *q, il_vec3 p)
+{
+    return v3_dot(v3_sub(p, q->p0), q->n) > 0.0f;
+}
+
+float il_portal_area_seen(const il_scene *s, il_vec3 p)
+{
+    float seen = 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        if (lights(&s->portals[i], p))
+            seen += s->portals[i].area;
+    return seen;
+}
+
+bool il_portal_sample(const il_scene *s, il_vec3 p, float seen, il_vec2 u, il_vec3 *dir)
+{
+    /* The triangle by area among those lighting p (u.x), then u.x rescaled
+     * to [0,1) within it and a uniform point of it. */
+    float x = u.x * seen;
+    const il_portal *q = NULL;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        const il_portal *c = &s->portals[i];
+        if (!lights(c, p))
+            continue;
+        q = c;
+        if (x < c->area)
+            break;
+        x -= c->area;
+    }
+    if (!q)
+        return false;
+    u.x = il_minf(x / q->area, 0x1.fffffep-1f);
+    il_vec2 b = il_sample_triangle(u);
+    il_vec3 at = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
+    il_vec3 d = v3_sub(at, p);
+    float len = v3_length(d);
+    if (!(len > 0.0f))
+        return false;
+    *dir = v3_scale(d, 1.0f / len);
+    return true;
+}
+
+/* Möller & Trumbore 1997 (JGT 2(1)): the distance along the unit dir from p
+ * to portal q, or 0 when the ray misses it.  The edges are inclusive. */
+static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
+{
+    il_vec3 pv = v3_cross(dir, q->e2);
+    float det = v3_dot(q->e1, pv);
+    if (det == 0.0f || !isfinite(det))
+        return 0.0f;
+    float inv = 1.0f / det;
+    il_vec3 sv = v3_sub(p, q->p0);
+    float b1 = v3_dot(sv, pv) * inv;
+    if (!(b1 >= 0.0f && b1 <= 1.0f))
+        return 0.0f;
+    il_vec3 qv = v3_cross(sv, q->e1);
+    float b2 = v3_dot(dir, qv) * inv;
+    if (!(b2 >= 0.0f && b1 + b2 <= 1.0f))
+        return 0.0f;
+    float t = v3_dot(q->e2, qv) * inv;
+    return t > 0.0f ? t : 0.0f;
+}
+
+float il_portal_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
+{
+    if (!(seen > 0.0f))
+        return 0.0f;
+    float pdf = 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        const il_portal *q = &s->portals[i];
+        if (!lights(q, p))
+            continue;
+        float t = cross_at(q, p, dir);
+        float cos_q = fabsf(v3_dot(dir, q->n));
+        if (t > 0.0f && cos_q > 0.0f)
+            pdf += t * t / (seen * cos_q);
+    }
+    return isfinite(pdf) ? pdf : 0.0f;
+}
+
+il_status il_scene_add_portal(il_scene *s, const il_vec3 *corners, uint32_t num_triangles,
+                              il_error *err)
+{
+    if (s->committed)
+        return il_fail(err, IL_ERR_INVALID, "the scene is committed and can no longer change");
+    if (num_triangles == 0 || !corners)
+        return il_fail(err, IL_ERR_INVALID, "portal: no triangles");
+    il_portal *grown = realloc(s->portals, sizeof *grown * ((size_t)s->num_portals + num_triangles));
+    if (!grown)
+        return il_fail(err, IL_ERR_MEMORY, "portal: out of memory");
+    s->portals = grown;
+    for (uint32_t t = 0; t < num_triangles; t++) {
+        il_vec3 a = corners[3 * t], b = corners[3 * t + 1], c = corners[3 * t + 2];
+        if (!v3_is_finite(a) || !v3_is_finite(b) || !v3_is_finite(c))
+            return il_fail(err, IL_ERR_INVALID, "portal: triangle %u has a NaN or infinite corner", t);
+        il_portal q = {.p0 = a, .e1 = v3_sub(b, a), .e2 = v3_sub(c, a)};
+        il_vec3 n = v3_cross(q.e1, q.e2);
+        float len = v3_length(n);
+        /* A sliver (area below 1e-6 of its longest edge squared) has no
+         * usable normal. */
+        float edge2 = fmaxf(v3_length2(q.e1), fmaxf(v3_length2(q.e2), v3_length2(v3_sub(c, b))));
+        if (!(len > 2e-6f * edge2) || !isfinite(len))
+            return il_fail(err, IL_ERR_INVALID, "portal: triangle %u has no area", t);
+        q.n = v3_scale(n, 1.0f / len);
+        q.area = 0.5f * len;
+        s->portals[s->num_portals + t] = q;
+    }
+    s->num_portals += num_triangles;
+    return IL_OK;
+}

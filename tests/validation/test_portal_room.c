@@ -1,0 +1,160 @@
+/* Environment portals in a room lit by a uniform sky through a window
+ * (scene/portal.h): the room 4 x 3 x 5 m (x in [-2, 2], y in [0, 3],
+ * z in [-5, 0]), an open window 2 x 1.2 m in the wall z = 0, and a portal
+ * on that window lighting the room.
+ * - Direct light (black walls, max depth 1): a sensor on the work plane
+ *   reads E = L int cos_s cos_w / r^2 dA over the window (a 600 x 360
+ *   midpoint quadrature), with the portal and without; the portal's
+ *   standard error is under half the other's at equal samples (0.30 of
+ *   it 1 m from the window, 0.08 at the back of the room).
+ * - Interreflections (grey walls): the readings with and without the
+ *   portal agree within their errors.
+ * - The path tracer's image with the portal: light sampling alone, BSDF
+ *   sampling alone and both (MIS) agree, and agree with the image without
+ *   the portal: the mixture's density is the one MIS weighs with.
+ * - Radiosity's direct light from the sky (patch_direct.c) converges to
+ *   the same room with the portal. */
+#include "pt_scenes.h"
+#include "scene/scene.h"
+
+#define WIN_X 1.0f   /* half-width */
+#define WIN_Y0 0.9f
+#define WIN_Y1 2.1f
+
+/* The room's surfaces facing inwards, the wall z = 0 in four pieces around
+ * the window; a uniform sky of radiance 1; the portal when asked. */
+static il_scene *window_room(float albedo, bool portal)
+{
+    il_scene *s = new_scene();
+    uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(albedo)});
+    add_quad(s, v3(0, 0, -2.5f), v3(0, 0, 2.5f), v3(2, 0, 0), m);      /* floor, +y */
+    add_quad(s, v3(0, 3, -2.5f), v3(2, 0, 0), v3(0, 0, 2.5f), m);      /* ceiling, -y */
+    add_quad(s, v3(0, 1.5f, -5), v3(2, 0, 0), v3(0, 1.5f, 0), m);      /* back, +z */
+    add_quad(s, v3(-2, 1.5f, -2.5f), v3(0, 1.5f, 0), v3(0, 0, 2.5f), m); /* left, +x */
+    add_quad(s, v3(2, 1.5f, -2.5f), v3(0, 0, 2.5f), v3(0, 1.5f, 0), m);  /* right, -x */
+    /* The window wall faces -z: beside the window, below it, above it. */
+    add_quad(s, v3(-1.5f, 1.5f, 0), v3(0, 1.5f, 0), v3(0.5f, 0, 0), m);
+    add_quad(s, v3(1.5f, 1.5f, 0), v3(0, 1.5f, 0), v3(0.5f, 0, 0), m);
+    add_quad(s, v3(0, 0.45f, 0), v3(0, 0.45f, 0), v3(1, 0, 0), m);
+    add_quad(s, v3(0, 2.55f, 0), v3(0, 0.45f, 0), v3(1, 0, 0), m);
+    il_environment_desc env = {.radiance = v3s(1.0f)};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    if (portal) {
+        /* Counter-clockwise seen from the room (from -z). */
+        il_vec3 c[6] = {v3(WIN_X, WIN_Y0, 0), v3(-WIN_X, WIN_Y0, 0), v3(-WIN_X, WIN_Y1, 0),
+                        v3(WIN_X, WIN_Y0, 0), v3(-WIN_X, WIN_Y1, 0), v3(WIN_X, WIN_Y1, 0)};
+        CHECK_OK(il_scene_add_portal(s, c, 2, &g_err), &g_err);
+    }
+    set_camera(s, v3(0, 1.5f, -4.8f), v3(0, 1.2f, 0), v3(0, 1, 0), 70.0f);
+    commit(s);
+    return s;
+}
+
+/* E at sensor p facing +y from the window of radiance 1: the midpoint rule
+ * on a 600 x 360 grid of the window's 2 x 1.2 m. */
+static double window_irradiance(il_vec3 p)
+{
+    const int nx = 600, ny = 360;
+    double dx = 2.0 * WIN_X / nx, dy = (WIN_Y1 - WIN_Y0) / ny, e = 0.0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            double x = -WIN_X + (i + 0.5) * dx - p.x, y = WIN_Y0 + (j + 0.5) * dy - p.y, z = -p.z;
+            double r2 = x * x + y * y + z * z;
+            e += (y / sqrt(r2)) * (z / sqrt(r2)) / r2 * dx * dy;
+        }
+    return e;
+}
+
+static void measure(const il_scene *s, const il_sensor *sn, size_t n, uint32_t depth, il_illuminance *out)
+{
+    il_illuminance_desc d = {.samples = 2048, .max_depth = depth, .seed = 5, .threads = 2};
+    CHECK_OK(il_measure_illuminance(s, sn, n, &d, out, NULL, &g_err), &g_err);
+}
+
+static const il_sensor sensors[3] = {
+    {{0.0f, 0.85f, -1.0f}, {0, 1, 0}}, {{0.5f, 0.85f, -2.5f}, {0, 1, 0}}, {{-1.5f, 0.85f, -4.5f}, {0, 1, 0}}};
+
+static void test_direct(void)
+{
+    il_scene *with = window_room(0.0f, true), *without = window_room(0.0f, false);
+    il_illuminance a[3], b[3];
+    measure(with, sensors, 3, 1, a);
+    measure(without, sensors, 3, 1, b);
+    for (int k = 0; k < 3; k++) {
+        /* lux = 683 x the irradiance's luminance (1 for grey radiance 1) */
+        double want = window_irradiance(sensors[k].position);
+        double ea = a[k].irradiance.y, eb = b[k].irradiance.y;
+        double sa = a[k].lux_error / 683.0, sb = b[k].lux_error / 683.0;
+        printf("sensor %d: E %.5f, portal %.5f +- %.5f, no portal %.5f +- %.5f\n", k, want, ea, sa, eb, sb);
+        CHECK_NEAR(ea, want, 4.0 * sa + 1e-3 * want);
+        CHECK_NEAR(eb, want, 4.0 * sb + 1e-3 * want);
+        CHECK(sa < 0.5 * sb);
+    }
+    il_scene_release(with);
+    il_scene_release(without);
+}
+
+static void test_interreflected(void)
+{
+    il_scene *with = window_room(0.6f, true), *without = window_room(0.6f, false);
+    il_illuminance a[3], b[3];
+    measure(with, sensors, 3, 0, a);
+    measure(without, sensors, 3, 0, b);
+    for (int k = 0; k < 3; k++) {
+        printf("sensor %d, walls 0.6: portal %.2f +- %.2f lx, no portal %.2f +- %.2f lx\n", k,
+               (double)a[k].lux, (double)a[k].lux_error, (double)b[k].lux, (double)b[k].lux_error);
+        double tol = 4.0 * sqrt((double)a[k].lux_error * a[k].lux_error + (double)b[k].lux_error * b[k].lux_error);
+        CHECK_NEAR(a[k].lux, b[k].lux, tol);
+        CHECK(a[k].lux_error < b[k].lux_error);
+    }
+    il_scene_release(with);
+    il_scene_release(without);
+}
+
+static void test_path_tracer(void)
+{
+    il_scene *with = window_room(0.6f, true), *without = window_room(0.6f, false);
+    il_render_desc rd = {.spp = 256, .max_depth = 4, .seed = 9, .threads = 2};
+    il_image mis = render_image(with, 48, 36, &rd, IL_PT_MIS, NULL);
+    il_image nee = render_image(with, 48, 36, &rd, IL_PT_NEE_ONLY, NULL);
+    il_image bsdf = render_image(with, 48, 36, &rd, IL_PT_BSDF_ONLY, NULL);
+    rd.spp = 1024;
+    il_image ref = render_image(without, 48, 36, &rd, IL_PT_MIS, NULL);
+    double m = image_mean(&mis, 1), n = image_mean(&nee, 1), b = image_mean(&bsdf, 1), r = image_mean(&ref, 1);
+    printf("path tracer with the portal: MIS %.5f, light sampling %.5f, BSDF sampling %.5f; "
+           "without it (1024 spp) %.5f\n", m, n, b, r);
+    CHECK_REL(m, r, 0.01);
+    CHECK_REL(n, r, 0.01);
+    CHECK_REL(b, r, 0.02);
+    CHECK(image_finite(&mis) && image_finite(&nee));
+    il_image_free(&mis);
+    il_image_free(&nee);
+    il_image_free(&bsdf);
+    il_image_free(&ref);
+    il_scene_release(with);
+    il_scene_release(without);
+}
+
+static void test_radiosity(void)
+{
+    il_scene *with = window_room(0.6f, true), *without = window_room(0.6f, false);
+    il_render_desc rd = {.method = IL_METHOD_RADIOSITY, .spp = 4, .seed = 2, .threads = 2};
+    il_image a = render_desc_image(with, 48, 36, &rd, NULL);
+    il_image b = render_desc_image(without, 48, 36, &rd, NULL);
+    double ma = image_mean(&a, 1), mb = image_mean(&b, 1);
+    printf("radiosity: with the portal %.5f, without %.5f\n", ma, mb);
+    CHECK_REL(ma, mb, 0.03);
+    il_image_free(&a);
+    il_image_free(&b);
+    il_scene_release(with);
+    il_scene_release(without);
+}
+
+int main(void)
+{
+    test_direct();
+    test_interreflected();
+    test_path_tracer();
+    test_radiosity();
+    return check_report();
+}
