@@ -68,6 +68,9 @@ int cmd_info(int argc, char **argv)
     if (in.num_portal_triangles)
         printf("portals:    %u triangle%s, %.3g m^2 (the environment's light is sampled through them)\n",
                in.num_portal_triangles, in.num_portal_triangles == 1 ? "" : "s", (double)in.portal_area);
+    else if (in.num_panes && in.has_environment)
+        printf("portals:    none (a portal on each window makes a room lit by the sky less noisy: "
+               "docs/scene-format.md, \"environment\")\n");
     il_sky_desc sky;
     if (il_scene_get_daylight(scene, &sky)) {
         if (sky.cie_type == 0)

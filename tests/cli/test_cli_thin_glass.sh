@@ -3,14 +3,18 @@
 # on a straight line, so the daylight factor with the pane is the open
 # window's times the pane's transmittance over the angles the sky comes in
 # at (0.923 at normal incidence, less at a slant): between 0.80 and 0.93 of
-# it.  A render, an OBJ sheet of glass taken as a pane, and bad panes.
+# it.  A render, an OBJ sheet of glass taken as a pane, bad panes; the
+# room's portal in `info`, the hint without it, a bad portal.
 . "$(dirname "$0")/lib.bash"
 
 ROOM="$IL_SOURCE_DIR/scenes/window-room.json"
 area=(--plane y=0.85 --area -2,-5,2,0 --margin 0.5 --samples 4096 --threads 2)
-# The same room with the pane moved 500 m away: an open window.
-sed 's/"translate": \[0, 1.5, 0\], "rotate": \[1, 0, 0, -90\]/"translate": [0, 1.5, 500], "rotate": [1, 0, 0, -90]/' \
-    "$ROOM" > open.json
+# The same room with the pane moved 500 m away (the line after its name;
+# the portal stays on the window): an open window.
+sed '/"name": "window",/{n;s/"translate": \[0, 1.5, 0\]/"translate": [0, 1.5, 500]/}' "$ROOM" > open.json
+checks=$((checks + 1))
+grep -q '"translate": \[0, 1.5, 500\]' open.json && [ "$(grep -c '"translate": \[0, 1.5, 0\]' open.json)" = 1 ] ||
+    fail "open.json: expected the pane moved and the portal left"
 checks=$((checks + 1))
 cmp -s "$ROOM" open.json && fail "open.json: the window pane was not moved"
 
@@ -27,6 +31,16 @@ awk -v g="$glazed" -v o="$open" 'BEGIN { r = g / o; exit !(o > 2 && r > 0.80 && 
 
 expect_exit 0 "info" -- "$ILLUM" info "$ROOM"
 expect_stdout "panes:      1 mesh of thin_glass" "info: the pane"
+expect_stdout "portals:    2 triangles, 2.4 m^2" "info: the portal"
+# Without its portal, info suggests one.
+sed -e '/"portals": \[/,/}\]},/d' -e 's/"environment": {"sky": "overcast",$/"environment": {"sky": "overcast"},/' "$ROOM" > noportal.json
+expect_exit 0 "info without the portal" -- "$ILLUM" info noportal.json
+expect_stdout "portals:    none (a portal on each window" "info: the hint"
+# A bad portal: exit 1, the message names it, no image.
+sed 's/"portals": \[{"shape": "quad"/"portals": [{"shape": "box"/' "$ROOM" > badportal.json
+expect_exit 1 "a box portal" -- "$ILLUM" render badportal.json --spp 1 -o badportal.png
+expect_stderr "shape: a portal is a \"quad\"" "bad portal: the message"
+expect_no_file badportal.png "bad portal: no image"
 expect_exit 0 "render" -- "$ILLUM" render "$ROOM" --spp 4 --width 64 --height 48 -o room.exr
 expect_file room.exr "render: the image"
 
