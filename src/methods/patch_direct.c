@@ -162,6 +162,8 @@ static il_vec3 sky_map_irradiance(const il_scene *scene, const il_vec3 *points, 
         if (!(cos_n > 0.0f) || !(pdf > 0.0f) || v3_is_zero(L))
             continue;
         float w = r < half ? il_power_heuristic(pdf_cos, pdf_env) : il_power_heuristic(pdf_env, pdf_cos);
+        if (!(w > 0.0f))
+            continue; /* nothing to add (and a NaN would spread through a solve) */
         il_ray ray = {.org = il_offset_origin(scene->tracer, p, n, dir), .tmin = 0.0f, .dir = dir,
                       .tmax = INFINITY};
         sum = v3_fma(sum, L, w * cos_n / pdf * il_trace_visibility(scene->tracer, &ray));

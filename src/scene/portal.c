@@ -25,6 +25,47 @@ float il_portal_area_seen(const il_scene *s, il_vec3 p)
     return seen;
 }
 
+/* Möller & Trumbore 1997 (JGT 2(1)): the distance along the unit dir from p
+ * to portal q, or 0 when the ray misses it.  The edges are inclusive. */
+static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
+{
+    il_vec3 pv = v3_cross(dir, q->e2);
+    float det = v3_dot(q->e1, pv);
+    if (det == 0.0f || !isfinite(det))
+        return 0.0f;
+    float inv = 1.0f / det;
+    il_vec3 sv = v3_sub(p, q->p0);
+    float b1 = v3_dot(sv, pv) * inv;
+    if (!(b1 >= 0.0f && b1 <= 1.0f))
+        return 0.0f;
+    il_vec3 qv = v3_cross(sv, q->e1);
+    float b2 = v3_dot(dir, qv) * inv;
+    if (!(b2 >= 0.0f && b1 + b2 <= 1.0f))
+        return 0.0f;
+    float t = v3_dot(q->e2, qv) * inv;
+    return t > 0.0f ? t : 0.0f;
+}
+
+/* A crossing nearly in the portal's plane counts for nothing: its density
+ * d^2 / (A cos) grows without bound, and squared by the power heuristic it
+ * overflowed to inf / inf (a NaN that spread through a hierarchical
+ * radiosity solve from the elements beside a window).  il_portal_sample
+ * drops a draw whose own crossing is such, so the draws kept are exactly
+ * distributed as il_portal_pdf says and MIS stays unbiased; what is left
+ * out has almost no projected area. */
+#define IL_PORTAL_MIN_COS 1e-3f
+#define IL_PORTAL_MAX_TERM 1e12f
+
+/* Portal q's part of the density of direction dir from p (0: missed, or
+ * left out as above). */
+static float density_term(const il_portal *q, il_vec3 p, float seen, il_vec3 dir)
+{
+    float t = cross_at(q, p, dir);
+    float cos_q = fabsf(v3_dot(dir, q->n));
+    float term = t > 0.0f && cos_q >= IL_PORTAL_MIN_COS ? t * t / (seen * cos_q) : 0.0f;
+    return term <= IL_PORTAL_MAX_TERM ? term : 0.0f;
+}
+
 bool il_portal_sample(const il_scene *s, il_vec3 p, float seen, il_vec2 u, il_vec3 *dir)
 {
     /* The triangle by area among those lighting p (u.x), then u.x rescaled
@@ -50,28 +91,7 @@ bool il_portal_sample(const il_scene *s, il_vec3 p, float seen, il_vec2 u, il_ve
     if (!(len > 0.0f))
         return false;
     *dir = v3_scale(d, 1.0f / len);
-    return true;
-}
-
-/* Möller & Trumbore 1997 (JGT 2(1)): the distance along the unit dir from p
- * to portal q, or 0 when the ray misses it.  The edges are inclusive. */
-static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
-{
-    il_vec3 pv = v3_cross(dir, q->e2);
-    float det = v3_dot(q->e1, pv);
-    if (det == 0.0f || !isfinite(det))
-        return 0.0f;
-    float inv = 1.0f / det;
-    il_vec3 sv = v3_sub(p, q->p0);
-    float b1 = v3_dot(sv, pv) * inv;
-    if (!(b1 >= 0.0f && b1 <= 1.0f))
-        return 0.0f;
-    il_vec3 qv = v3_cross(sv, q->e1);
-    float b2 = v3_dot(dir, qv) * inv;
-    if (!(b2 >= 0.0f && b1 + b2 <= 1.0f))
-        return 0.0f;
-    float t = v3_dot(q->e2, qv) * inv;
-    return t > 0.0f ? t : 0.0f;
+    return density_term(q, p, seen, *dir) > 0.0f;
 }
 
 float il_portal_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
@@ -79,16 +99,10 @@ float il_portal_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
     if (!(seen > 0.0f))
         return 0.0f;
     float pdf = 0.0f;
-    for (uint32_t i = 0; i < s->num_portals; i++) {
-        const il_portal *q = &s->portals[i];
-        if (!lights(q, p))
-            continue;
-        float t = cross_at(q, p, dir);
-        float cos_q = fabsf(v3_dot(dir, q->n));
-        if (t > 0.0f && cos_q > 0.0f)
-            pdf += t * t / (seen * cos_q);
-    }
-    return isfinite(pdf) ? pdf : 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        if (lights(&s->portals[i], p))
+            pdf += density_term(&s->portals[i], p, seen, dir);
+    return pdf;
 }
 
 il_status il_scene_add_portal(il_scene *s, const il_vec3 *corners, uint32_t num_triangles,

@@ -1,5 +1,6 @@
 /* Environment portals (scene/portal.h):
  * - which points a portal lights: those strictly on the side its front faces;
+ *   crossings within 1e-3 of its plane's cosine count for nothing;
  * - directions through a rectangle of a x b seen on its axis from distance
  *   d: the mean of 1/pdf over them is the rectangle's solid angle,
  *   4 asin(ab / sqrt((a^2 + d^2)(b^2 + d^2))) (a, b the half-sides), and
@@ -50,6 +51,29 @@ static void test_lit_side(const il_scene *s)
     il_vec3 L1 = il_environment_sample_at(s, v3(0, 3, 0), v2(0.3f, 0.6f), &d1, &p1);
     il_vec3 L2 = il_environment_sample(s, v2(0.3f, 0.6f), &d2, &p2);
     CHECK(p1 == p2 && d1.x == d2.x && d1.y == d2.y && d1.z == d2.z && L1.x == L2.x);
+}
+
+/* A point a hair in front of the portal's plane sees it edge-on: such
+ * crossings count for nothing (their density, squared by the power
+ * heuristic, overflowed), draws through them fail, and the mixture's
+ * densities stay finite. */
+static void test_grazing(const il_scene *s)
+{
+    il_vec3 p = v3(3.0f, 2.0f - 1e-6f, 0.1f);
+    float seen = il_portal_area_seen(s, p);
+    CHECK(seen > 0.0f);
+    int drawn = 0, finite = 0;
+    for (int i = 0; i < 64; i++) {
+        il_vec2 u = v2((i % 8 + 0.5f) / 8.0f, (i / 8 + 0.5f) / 8.0f);
+        il_vec3 dir;
+        drawn += il_portal_sample(s, p, seen, u, &dir);
+        float pdf;
+        il_environment_sample_at(s, p, u, &dir, &pdf);
+        finite += isfinite(pdf) && isfinite(pdf * pdf);
+    }
+    CHECK(drawn == 0);
+    CHECK(finite == 64);
+    CHECK(il_portal_pdf(s, p, seen, v3_normalize(v3(-1.0f, 1e-6f, 0.0f))) == 0.0f);
 }
 
 static void test_solid_angle(const il_scene *s)
@@ -227,6 +251,7 @@ int main(void)
 {
     il_scene *s = portal_scene();
     test_lit_side(s);
+    test_grazing(s);
     test_solid_angle(s);
     test_pdf_normalised(s);
     test_mixture(s);
