@@ -5,7 +5,9 @@
 #     (atrium) under the overcast sky alone;
 #  2. the false-colour view of the Cornell box, 512x512 at 64 samples;
 #  3. the noise of a grid against the sample count: the largest standard
-#     error of the office's readings at 256, 1024 and 4096 samples.
+#     error of the office's readings at 256, 1024 and 4096 samples;
+#  4. scenes/window-room.json's work plane at 1024 samples, with its
+#     window's portal and without it: seconds, noise.
 # Usage: bench/illuminance.sh [BUILD_DIR] [THREADS] (from the repository root).
 set -e
 ILLUM=${1:-build}/illum
@@ -26,4 +28,12 @@ echo "part 3: the office's noise"
 for n in 256 1024 4096; do
   timed "$ILLUM" illuminance office --plane y=0.8 --margin 0.5 --samples $n > /dev/null
   echo "$n samples: $(sed -n 's/^noise *//p' "$OUT/out")"
+done
+echo "part 4: window-room, 1024 samples, with and without its portal"
+ROOM=scenes/window-room.json
+sed -e '/"portals": \[/,/}\]},/d' -e 's/"environment": {"sky": "overcast",$/"environment": {"sky": "overcast"},/' \
+    "$ROOM" > "$OUT/noportal.json"
+for scene in "$ROOM" "$OUT/noportal.json"; do
+  t=$(timed "$ILLUM" illuminance "$scene" --plane y=0.85 --area -2,-5,2,0 --margin 0.5)
+  echo "$(basename "$scene"): $t; $(sed -n 's/^noise *//p' "$OUT/out")"
 done
