@@ -800,6 +800,24 @@ static il_status parse_sky(jctx *c, const cJSON *env, const char *name)
     return IL_OK;
 }
 
+/* Calls parse(c, item, "where[i]") for each item of the array v in turn;
+ * the first error ends it. */
+static il_status parse_items(jctx *c, const cJSON *v, const char *where,
+                             il_status (*parse)(jctx *, const cJSON *, const char *))
+{
+    int i = 0;
+    const cJSON *it;
+    cJSON_ArrayForEach(it, v)
+    {
+        char w[WHERE_MAX];
+        child_index(w, where, i++);
+        il_status s = parse(c, it, w);
+        if (s != IL_OK)
+            return s;
+    }
+    return IL_OK;
+}
+
 /* One of "environment.portals": a "quad" shape or inline "positions" and
  * "indices", with a transform, lighting the side its front faces ("flip"
  * turns it); a quad faces +y before its transform. */
@@ -856,17 +874,7 @@ static il_status parse_portals(jctx *c, const cJSON *env)
         return IL_OK;
     if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) == 0)
         return bad(c, "environment.portals", "expected a non-empty array [...] of portals");
-    int i = 0;
-    const cJSON *it;
-    cJSON_ArrayForEach(it, v)
-    {
-        char w[WHERE_MAX];
-        child_index(w, "environment.portals", i++);
-        il_status s = parse_portal(c, it, w);
-        if (s != IL_OK)
-            return s;
-    }
-    return IL_OK;
+    return parse_items(c, v, "environment.portals", parse_portal);
 }
 
 /* "environment": a constant "radiance", or a "map" (an image file relative
@@ -999,26 +1007,13 @@ static il_status parse_scene(jctx *c, const cJSON *root)
         return il_fail(c->err, IL_ERR_FORMAT, "%s: meshes: missing (an array of meshes)", c->path);
     if (!cJSON_IsArray(v))
         return bad(c, "meshes", "expected an array [...]");
-    int i = 0;
-    const cJSON *it;
-    cJSON_ArrayForEach(it, v)
-    {
-        char w[WHERE_MAX];
-        child_index(w, "meshes", i++);
-        if ((s = parse_mesh(c, it, w)) != IL_OK)
-            return s;
-    }
+    if ((s = parse_items(c, v, "meshes", parse_mesh)) != IL_OK)
+        return s;
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "lights"))) {
         if (!cJSON_IsArray(v))
             return bad(c, "lights", "expected an array [...]");
-        i = 0;
-        cJSON_ArrayForEach(it, v)
-        {
-            char w[WHERE_MAX];
-            child_index(w, "lights", i++);
-            if ((s = parse_light(c, it, w)) != IL_OK)
-                return s;
-        }
+        if ((s = parse_items(c, v, "lights", parse_light)) != IL_OK)
+            return s;
     }
     /* After the meshes, so that it replaces a camera found in a mesh file. */
     if ((v = cJSON_GetObjectItemCaseSensitive(root, "camera")) && (s = parse_camera(c, v)) != IL_OK)
