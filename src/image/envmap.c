@@ -318,21 +318,27 @@ il_vec3 il_envmap_lookup(const il_image *img, il_env_mapping m, il_vec3 dir)
         return angular_bilerp(img, x0, x1, y0, y1, tx, ty);
     }
     case IL_ENV_LATLONG:
-    default: {
-        il_vec2 uv = il_envmap_dir_to_uv(m, dir);
-        /* Wraps around in u: the left and right edges meet at +z. */
-        float x = uv.x * (float)w - 0.5f;
-        float fx = floorf(x);
-        tx = x - fx;
-        long k = (long)fx % (long)w;
-        if (k < 0)
-            k += w;
-        x0 = (uint32_t)k;
-        x1 = x0 + 1 == w ? 0 : x0 + 1;
-        axis_clamp(uv.y * (float)h, h, 0, &y0, &y1, &ty);
-        break;
+    default:
+        return il_envmap_lookup_latlong_uv(img, il_envmap_dir_to_uv(m, dir));
     }
-    }
+    return bilerp(img, x0, x1, y0, y1, tx, ty);
+}
+
+il_vec3 il_envmap_lookup_latlong_uv(const il_image *img, il_vec2 uv)
+{
+    uint32_t w = img->width, h = img->height;
+    uint32_t x0, x1, y0, y1;
+    float tx, ty;
+    /* Wraps around in u: the left and right edges meet at +z. */
+    float x = uv.x * (float)w - 0.5f;
+    float fx = floorf(x);
+    tx = x - fx;
+    long k = (long)fx % (long)w;
+    if (k < 0)
+        k += w;
+    x0 = (uint32_t)k;
+    x1 = x0 + 1 == w ? 0 : x0 + 1;
+    axis_clamp(uv.y * (float)h, h, 0, &y0, &y1, &ty);
     return bilerp(img, x0, x1, y0, y1, tx, ty);
 }
 

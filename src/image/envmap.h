@@ -94,6 +94,8 @@ static inline il_vec3 il_envmap_latlong_dir(float u, float v)
 /* Bilinear radiance of img (mapping m) from direction dir (unit, in the
  * map's own frame: no rotation). */
 il_vec3 il_envmap_lookup(const il_image *img, il_env_mapping m, il_vec3 dir);
+/* The same for a lat-long image at the point uv (il_envmap_dir_to_uv's). */
+il_vec3 il_envmap_lookup_latlong_uv(const il_image *img, il_vec2 uv);
 
 /* Importance sampling of the sky (envmap_sample.c): a piecewise-constant
  * density over a lat-long grid of cells (the map's own texels for a
@@ -147,5 +149,9 @@ void il_envmap_dist_free(il_envmap_dist *d);
 il_vec3 il_envmap_sample(const il_envmap *env, il_vec2 u, il_vec3 *dir, float *pdf);
 /* The solid-angle density with which il_envmap_sample picks world dir. */
 float il_envmap_pdf(const il_envmap *env, il_vec3 dir);
+/* il_envmap_eval and il_envmap_pdf at once, the same values bit for bit: a
+ * lat-long map turns dir into its texel coordinates once for both (the
+ * two atan2f of il_envmap_dir_to_uv are a good part of a sky's cost). */
+il_vec3 il_envmap_eval_pdf(const il_envmap *env, il_vec3 dir, float *pdf);
 
 #endif

@@ -266,16 +266,40 @@ il_vec3 il_envmap_sample(const il_envmap *env, il_vec2 u, il_vec3 *dir, float *p
     return il_envmap_lookup(&env->img, env->mapping, local);
 }
 
-float il_envmap_pdf(const il_envmap *env, il_vec3 dir)
+/* The density at lat-long point uv of a direction whose sin(theta) is st
+ * (> 0). */
+static float pdf_at_uv(const il_envmap_dist *d, il_vec2 uv, float st)
 {
-    const il_envmap_dist *d = &env->dist;
-    il_vec3 local = il_envmap_to_local(env, dir);
-    float st = sqrtf(local.x * local.x + local.z * local.z) / v3_length(dir);
-    if (!(st > 0.0f))
-        return 0.0f;
-    il_vec2 uv = il_envmap_dir_to_uv(IL_ENV_LATLONG, local);
     uint32_t i = (uint32_t)il_minf(uv.x * (float)d->width, (float)(d->width - 1));
     uint32_t j = (uint32_t)il_minf(uv.y * (float)d->height, (float)(d->height - 1));
     float pm = il_distrib1d_pmf(&d->marginal, j), pc = il_distrib1d_pmf(&d->rows[j], i);
     return pm * pc * (float)d->width * (float)d->height / (2.0f * IL_PI * IL_PI * st);
+}
+
+float il_envmap_pdf(const il_envmap *env, il_vec3 dir)
+{
+    il_vec3 local = il_envmap_to_local(env, dir);
+    float st = sqrtf(local.x * local.x + local.z * local.z) / v3_length(dir);
+    if (!(st > 0.0f))
+        return 0.0f;
+    return pdf_at_uv(&env->dist, il_envmap_dir_to_uv(IL_ENV_LATLONG, local), st);
+}
+
+il_vec3 il_envmap_eval_pdf(const il_envmap *env, il_vec3 dir, float *pdf)
+{
+    if (env->mapping != IL_ENV_LATLONG) {
+        *pdf = il_envmap_pdf(env, dir);
+        return il_envmap_eval(env, dir);
+    }
+    /* il_envmap_eval's and il_envmap_pdf's steps, sharing uv. */
+    il_vec3 local = il_envmap_to_local(env, dir);
+    float st = sqrtf(local.x * local.x + local.z * local.z) / v3_length(dir);
+    bool lookup = v3_is_finite(local) && !v3_is_zero(local);
+    if (!lookup && !(st > 0.0f)) {
+        *pdf = 0.0f;
+        return v3s(0.0f);
+    }
+    il_vec2 uv = il_envmap_dir_to_uv(IL_ENV_LATLONG, local);
+    *pdf = st > 0.0f ? pdf_at_uv(&env->dist, uv, st) : 0.0f;
+    return lookup ? il_envmap_lookup_latlong_uv(&env->img, uv) : v3s(0.0f);
 }

@@ -151,8 +151,7 @@ static il_vec3 sky_map_irradiance(const il_scene *scene, const il_vec3 *points, 
             dir = il_frame_to_world(&f, il_sample_cosine_hemisphere(v2(ux, uy)));
             cos_n = v3_dot(dir, n);
             pdf_cos = il_cosine_hemisphere_pdf(cos_n);
-            pdf_env = il_environment_pdf_at(scene, p, dir);
-            L = il_environment_radiance(scene, dir);
+            L = il_environment_eval_at(scene, p, dir, &pdf_env);
         } else {
             L = il_environment_sample_at(scene, p, v2(ux, uy), &dir, &pdf_env);
             cos_n = v3_dot(dir, n);

@@ -429,13 +429,27 @@ float il_environment_pdf(const il_scene *s, il_vec3 dir)
     return IL_INV_4PI;
 }
 
-/* The mixture of portal.h: a share IL_PORTAL_SHARE of the draws through the
- * portals lighting p, the rest from il_environment_sample, and the density
- * of the mixture for either (one-sample MIS, balance heuristic). */
-static float mixture_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
+/* The radiance from dir and il_environment_pdf's density of it, sharing a
+ * map's lookup (il_envmap_eval_pdf). */
+static il_vec3 environment_eval(const il_scene *s, il_vec3 dir, float *pdf)
 {
-    return IL_PORTAL_SHARE * il_portal_pdf(s, p, seen, dir) +
-           (1.0f - IL_PORTAL_SHARE) * il_environment_pdf(s, dir);
+    if (!s->has_environment) {
+        *pdf = 0.0f;
+        return v3s(0.0f);
+    }
+    if (s->envmap)
+        return il_envmap_eval_pdf(s->envmap, dir, pdf);
+    *pdf = IL_INV_4PI;
+    return s->environment.radiance;
+}
+
+/* The mixture of portal.h: a share IL_PORTAL_SHARE of the draws through the
+ * portals lighting p, the rest from il_environment_sample (whose density of
+ * dir is pdf_env), and the density of the mixture for either (one-sample
+ * MIS, balance heuristic). */
+static float mixture_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir, float pdf_env)
+{
+    return IL_PORTAL_SHARE * il_portal_pdf(s, p, seen, dir) + (1.0f - IL_PORTAL_SHARE) * pdf_env;
 }
 
 il_vec3 il_environment_sample_at(const il_scene *s, il_vec3 p, il_vec2 u, il_vec3 *dir, float *pdf)
@@ -444,24 +458,43 @@ il_vec3 il_environment_sample_at(const il_scene *s, il_vec3 p, il_vec2 u, il_vec
     if (!(seen > 0.0f))
         return il_environment_sample(s, u, dir, pdf);
     il_vec3 L;
+    float pdf_env;
     if (u.x < IL_PORTAL_SHARE) {
         u.x = il_minf(u.x / IL_PORTAL_SHARE, 0x1.fffffep-1f);
         if (!il_portal_sample(s, p, seen, u, dir)) {
             *pdf = 0.0f;
             return v3s(0.0f);
         }
-        L = il_environment_radiance(s, *dir);
+        L = environment_eval(s, *dir, &pdf_env);
     } else {
         u.x = il_minf((u.x - IL_PORTAL_SHARE) / (1.0f - IL_PORTAL_SHARE), 0x1.fffffep-1f);
-        float pdf_env;
         L = il_environment_sample(s, u, dir, &pdf_env);
+        pdf_env = il_environment_pdf(s, *dir); /* the sampler's own, recomputed as pdf_at does */
     }
-    *pdf = mixture_pdf(s, p, seen, *dir);
+    *pdf = mixture_pdf(s, p, seen, *dir, pdf_env);
     return L;
 }
 
 float il_environment_pdf_at(const il_scene *s, il_vec3 p, il_vec3 dir)
 {
     float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
-    return seen > 0.0f ? mixture_pdf(s, p, seen, dir) : il_environment_pdf(s, dir);
+    float pdf_env = il_environment_pdf(s, dir);
+    return seen > 0.0f ? mixture_pdf(s, p, seen, dir, pdf_env) : pdf_env;
+}
+
+il_vec3 il_environment_eval_at(const il_scene *s, il_vec3 p, il_vec3 dir, float *pdf)
+{
+    float pdf_env;
+    il_vec3 L = environment_eval(s, dir, &pdf_env);
+    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
+    *pdf = seen > 0.0f ? mixture_pdf(s, p, seen, dir, pdf_env) : pdf_env;
+    return L;
+}
+
+il_vec3 il_environment_light_eval(const il_scene *s, il_vec3 p, il_vec3 dir, float *light_pdf)
+{
+    float pdf_at;
+    il_vec3 L = il_environment_eval_at(s, p, dir, &pdf_at);
+    *light_pdf = s->environment_light == IL_NO_LIGHT ? 0.0f : s->light_pmf[s->environment_light] * pdf_at;
+    return L;
 }

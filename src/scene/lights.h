@@ -67,5 +67,11 @@ il_vec3 il_environment_sample_at(const il_scene *scene, il_vec3 p, il_vec2 u, il
                                  float *pdf);
 /* The solid-angle density of il_environment_sample_at choosing dir from p. */
 float il_environment_pdf_at(const il_scene *scene, il_vec3 p, il_vec3 dir);
+/* il_environment_radiance(dir), with il_environment_pdf_at(p, dir) in *pdf:
+ * the same values, a map looked up once for both. */
+il_vec3 il_environment_eval_at(const il_scene *scene, il_vec3 p, il_vec3 dir, float *pdf);
+/* The same with il_light_pdf_environment(p, dir) in *light_pdf (what a
+ * BSDF ray that escapes needs for MIS). */
+il_vec3 il_environment_light_eval(const il_scene *scene, il_vec3 p, il_vec3 dir, float *light_pdf);
 
 #endif

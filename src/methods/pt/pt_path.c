@@ -60,11 +60,13 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     const il_tracer *tr = s->tracer;
     st->shadow = false;
     if (!hit) {
-        il_vec3 le = il_environment_radiance(s, st->ray.dir);
+        /* A camera or specular ray takes the sky at weight 1; a BSDF ray
+         * weighs it against light sampling's density (one lookup for both). */
+        float light_pdf = 0.0f;
+        il_vec3 le = st->specular ? il_environment_radiance(s, st->ray.dir)
+                                  : il_environment_light_eval(s, st->prev_p, st->ray.dir, &light_pdf);
         if (!v3_is_zero(le)) {
-            float w = st->specular ? 1.0f
-                                   : mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf,
-                                                il_light_pdf_environment(s, st->prev_p, st->ray.dir));
+            float w = st->specular ? 1.0f : mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf, light_pdf);
             st->L = add_scaled(st->L, st->beta, le, w);
         }
         return false;
