@@ -5,8 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "core/sampling.h"
 #include "core/error.h"
+#include "core/sampling.h"
 #include "scene/scene.h"
 
 /* p lies on the lit side of portal q: strictly, so a point on the portal's
