@@ -263,6 +263,10 @@ il_vec3 il_envmap_sample(const il_envmap *env, il_vec2 u, il_vec3 *dir, float *p
         return v3s(0.0f);
     }
     *pdf = p;
+    /* A lat-long image is looked up at the point drawn (the direction's
+     * own texel coordinates, up to rounding: no atan2f back). */
+    if (env->mapping == IL_ENV_LATLONG)
+        return il_envmap_lookup_latlong_uv(&env->img, v2(fu, fv));
     return il_envmap_lookup(&env->img, env->mapping, local);
 }
 
