@@ -402,11 +402,16 @@ float il_light_pdf_area(const il_scene *s, uint32_t light, il_vec3 p, il_vec3 p_
     return s->light_pmf[light] * area_to_solid_angle(s->lights[light].area, dist2, cos_l);
 }
 
+/* The light table's density for the environment's density pdf_at (times its
+ * selection; 0 when the table has no environment). */
+static float environment_light_pdf(const il_scene *s, float pdf_at)
+{
+    return s->environment_light == IL_NO_LIGHT ? 0.0f : s->light_pmf[s->environment_light] * pdf_at;
+}
+
 float il_light_pdf_environment(const il_scene *s, il_vec3 p, il_vec3 dir)
 {
-    if (s->environment_light == IL_NO_LIGHT)
-        return 0.0f;
-    return s->light_pmf[s->environment_light] * il_environment_pdf_at(s, p, dir);
+    return environment_light_pdf(s, il_environment_pdf_at(s, p, dir));
 }
 
 il_vec3 il_environment_sample(const il_scene *s, il_vec2 u, il_vec3 *dir, float *pdf)
@@ -452,9 +457,22 @@ static float mixture_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir, 
     return IL_PORTAL_SHARE * il_portal_pdf(s, p, seen, dir) + (1.0f - IL_PORTAL_SHARE) * pdf_env;
 }
 
+/* The area of the portals lighting p; 0 without portals or environment. */
+static float portals_seen(const il_scene *s, il_vec3 p)
+{
+    return s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
+}
+
+/* il_environment_pdf_at's value, given il_environment_pdf's pdf_env. */
+static float pdf_at_from(const il_scene *s, il_vec3 p, il_vec3 dir, float pdf_env)
+{
+    float seen = portals_seen(s, p);
+    return seen > 0.0f ? mixture_pdf(s, p, seen, dir, pdf_env) : pdf_env;
+}
+
 il_vec3 il_environment_sample_at(const il_scene *s, il_vec3 p, il_vec2 u, il_vec3 *dir, float *pdf)
 {
-    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
+    float seen = portals_seen(s, p);
     if (!(seen > 0.0f))
         return il_environment_sample(s, u, dir, pdf);
     il_vec3 L;
@@ -477,17 +495,14 @@ il_vec3 il_environment_sample_at(const il_scene *s, il_vec3 p, il_vec2 u, il_vec
 
 float il_environment_pdf_at(const il_scene *s, il_vec3 p, il_vec3 dir)
 {
-    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
-    float pdf_env = il_environment_pdf(s, dir);
-    return seen > 0.0f ? mixture_pdf(s, p, seen, dir, pdf_env) : pdf_env;
+    return pdf_at_from(s, p, dir, il_environment_pdf(s, dir));
 }
 
 il_vec3 il_environment_eval_at(const il_scene *s, il_vec3 p, il_vec3 dir, float *pdf)
 {
     float pdf_env;
     il_vec3 L = environment_eval(s, dir, &pdf_env);
-    float seen = s->num_portals && s->has_environment ? il_portal_area_seen(s, p) : 0.0f;
-    *pdf = seen > 0.0f ? mixture_pdf(s, p, seen, dir, pdf_env) : pdf_env;
+    *pdf = pdf_at_from(s, p, dir, pdf_env);
     return L;
 }
 
@@ -495,6 +510,6 @@ il_vec3 il_environment_light_eval(const il_scene *s, il_vec3 p, il_vec3 dir, flo
 {
     float pdf_at;
     il_vec3 L = il_environment_eval_at(s, p, dir, &pdf_at);
-    *light_pdf = s->environment_light == IL_NO_LIGHT ? 0.0f : s->light_pmf[s->environment_light] * pdf_at;
+    *light_pdf = environment_light_pdf(s, pdf_at);
     return L;
 }
