@@ -271,6 +271,9 @@ typedef struct il_image {
 } il_image;
 
 typedef enum il_exr_precision { IL_EXR_HALF = 0, IL_EXR_FLOAT } il_exr_precision;
+/* The largest magnitude a half EXR holds: larger values are written as it
+ * (the sun's disc reaches about 2e6 W/(m^2 sr) at noon; IL_EXR_FLOAT keeps them). */
+#define IL_EXR_HALF_MAX 65504.0f
 
 /* Tone mapping: HDR radiance to display values (docs/tonemapping.md).  It
  * happens only at output: films and EXR/HDR/PFM files keep radiance. */

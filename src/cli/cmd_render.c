@@ -1,4 +1,5 @@
 /* `illum render SCENE`: load, render progressively, write images and stats. */
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -144,6 +145,29 @@ static bool on_progress(const il_render_progress *p, void *user)
         ps->drawn = true;
     }
     return !cli_interrupted;
+}
+
+/* A half EXR holds magnitudes up to IL_EXR_HALF_MAX, and the writer clamps
+ * to it: says so when a pixel is brighter (a camera that sees the sun). */
+static void warn_half_exr(const il_image *img, const render_options *o)
+{
+    bool half_exr = false;
+    for (int i = 0; i < o->num_outputs; i++) {
+        const char *dot = strrchr(o->outputs[i], '.');
+        half_exr |= dot && !strcasecmp(dot, ".exr") && o->write.exr_precision != IL_EXR_FLOAT;
+    }
+    if (!half_exr || o->run.quiet)
+        return;
+    size_t clamped = 0, pixels = (size_t)img->width * img->height;
+    for (size_t p = 0; p < pixels; p++) {
+        const float *c = img->rgb + 3 * p;
+        clamped += fabsf(c[0]) > IL_EXR_HALF_MAX || fabsf(c[1]) > IL_EXR_HALF_MAX ||
+                   fabsf(c[2]) > IL_EXR_HALF_MAX;
+    }
+    if (clamped)
+        cli_error("warning: %zu pixel%s brighter than %g, the most a half EXR holds, written as %g "
+                  "(--exr-float keeps them)", clamped, clamped == 1 ? " is" : "s are",
+                  (double)IL_EXR_HALF_MAX, (double)IL_EXR_HALF_MAX);
 }
 
 static bool known_image_extension(const char *path)
@@ -489,6 +513,8 @@ int cmd_render(int argc, char **argv)
     st = o.cuda ? IL_OK : il_film_resolve(film, &img, &err);
     for (int i = 0; st == IL_OK && i < o.num_outputs; i++)
         st = il_image_write(&img, o.outputs[i], &o.write, &err);
+    if (st == IL_OK)
+        warn_half_exr(&img, &o);
     il_image_free(&img);
     if (st != IL_OK) {
         cli_error("%s", err.message);

@@ -1,6 +1,7 @@
 /* OpenEXR through the OpenEXR Core C API (<OpenEXR/openexr.h>, OpenEXR 3.1).
  *
- * Writing: one scanline part, channels R, G, B as half (default) or float,
+ * Writing: one scanline part, channels R, G, B as half (default; clamped to
+ * +-65504, the largest half, so nothing turns into infinity) or float,
  * ZIP compression (16 scanlines per chunk; a chunk that does not shrink is
  * stored raw, see compress_raw_when_no_smaller), through a custom write callback
  * into the temporary file of image.c.
@@ -12,6 +13,7 @@
  * messages are captured instead of printed. */
 #include "image/image_io.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -287,9 +289,39 @@ static exr_result_t compress_raw_when_no_smaller(exr_encode_pipeline_t *enc)
     return rv;
 }
 
+/* A half can hold magnitudes up to 65504; the library turns anything
+ * beyond into infinity (the sun's disc holds up to about 2e6).  A copy of
+ * the image clamped to that range when it needs one, else NULL. */
+static float *clamped_to_half(const il_image *image, il_error *err, bool *failed)
+{
+    size_t n = (size_t)image->width * image->height * 3, i = 0;
+    *failed = false;
+    while (i < n && fabsf(image->rgb[i]) <= IL_EXR_HALF_MAX)
+        i++;
+    if (i == n)
+        return NULL;
+    float *copy = il_malloc(n * sizeof(float), err);
+    if (!copy) {
+        *failed = true;
+        return NULL;
+    }
+    for (i = 0; i < n; i++)
+        copy[i] = fmaxf(-IL_EXR_HALF_MAX, fminf(image->rgb[i], IL_EXR_HALF_MAX));
+    return copy;
+}
+
 il_status il_exr_write(const il_image *image, FILE *f, const char *path,
                        il_exr_precision precision, il_error *err)
 {
+    float *clamped = NULL;
+    if (precision != IL_EXR_FLOAT) {
+        bool failed;
+        clamped = clamped_to_half(image, err, &failed);
+        if (failed)
+            return IL_ERR_MEMORY;
+    }
+    const float *pixels = clamped ? clamped : image->rgb;
+
     exr_stream s = {.fd = fileno(f)};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_error;
@@ -336,7 +368,7 @@ il_status il_exr_write(const il_image *image, FILE *f, const char *path,
         if (rv != EXR_ERR_SUCCESS)
             break;
         initialized = true;
-        const float *row = image->rgb + (size_t)cinfo.start_y * image->width * 3;
+        const float *row = pixels + (size_t)cinfo.start_y * image->width * 3;
         for (int i = 0; i < enc.channel_count; i++) {
             exr_coding_channel_info_t *ch = &enc.channels[i];
             int c = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
@@ -358,6 +390,7 @@ il_status il_exr_write(const il_image *image, FILE *f, const char *path,
     if (initialized)
         exr_encoding_destroy(ctxt, &enc);
     exr_result_t frv = exr_finish(&ctxt);
+    free(clamped);
     if (rv == EXR_ERR_SUCCESS)
         rv = frv;
     if (rv != EXR_ERR_SUCCESS)

@@ -206,6 +206,30 @@ static void test_exr_half(void)
     il_image_free(&im);
 }
 
+/* A half holds up to 65504: brighter values (the sun seen by the camera)
+ * are written as +-65504, not as infinity; the image itself is untouched,
+ * and a float EXR keeps them. */
+static void test_exr_half_clamp(void)
+{
+    char p[1100];
+    il_error err = {0};
+    il_image im = {.width = 2, .height = 1, .rgb = (float[6]){1.5e9f, 65504.0f, 70000.0f, -1e6f, 2.0f, 0.25f}};
+    const float want[6] = {65504.0f, 65504.0f, 65504.0f, -65504.0f, 2.0f, 0.25f};
+    CHECK_OK(il_image_write(&im, tmp_path(p, "bright.exr"), NULL, &err), &err);
+    CHECK(im.rgb[0] == 1.5e9f && im.rgb[3] == -1e6f);
+    il_image back = {0};
+    CHECK_OK(il_image_read(p, &back, &err), &err);
+    for (int i = 0; back.rgb && i < 6; i++)
+        CHECK(back.rgb[i] == want[i]);
+    il_image_free(&back);
+    il_write_desc wf = {.exr_precision = IL_EXR_FLOAT};
+    CHECK_OK(il_image_write(&im, tmp_path(p, "bright_float.exr"), &wf, &err), &err);
+    CHECK_OK(il_image_read(p, &back, &err), &err);
+    for (int i = 0; back.rgb && i < 6; i++)
+        CHECK(back.rgb[i] == im.rgb[i]);
+    il_image_free(&back);
+}
+
 static void test_hdr_rgbe(void)
 {
     il_error err = {0};
@@ -838,6 +862,7 @@ int main(void)
     test_exr_float_exact();
     test_exr_incompressible_chunks();
     test_exr_half();
+    test_exr_half_clamp();
     test_hdr_rgbe();
     test_hdr_special_values();
     test_pfm_exact();
