@@ -55,6 +55,16 @@ typedef struct ilk_light {
     float pad[3];
 } ilk_light;
 
+/* A directional light's disc as the camera sees it (scene.h's
+ * il_light_disc); a scene has at most ILK_MAX_DISCS (kernel_scene.c). */
+#define ILK_MAX_DISCS 4u
+typedef struct ilk_disc {
+    ilk_vec3 towards;      /* unit, towards the disc's centre */
+    float sin2_radius;     /* sin^2 of its angular radius */
+    ilk_vec3 radiance;
+    float pad;
+} ilk_disc;
+
 /* The vertex normals of one triangle (of tris[i], leaf order), as the mesh
  * gives them; all zero when it has none. */
 typedef struct ilk_tri_normals {
@@ -113,6 +123,10 @@ typedef struct ilk_scene {
     /* Per triangle (of tris), its probability in the light table: 0 unless
      * it emits (NULL: no triangle emits). */
     const float *tri_light_pmf;
+    /* The discs of directional lights (the sun), which camera rays and
+     * mirror or glass chains from the camera see (il_background_radiance). */
+    ilk_disc discs[ILK_MAX_DISCS];
+    uint32_t num_discs;
     const ilk_tri_normals *normals; /* per triangle; NULL when no mesh has normals */
     const ilk_tri_uvs *uvs;        /* per triangle; NULL when no material has a texture */
     const ilk_texture *textures;
@@ -261,6 +275,20 @@ IL_DEVICE_INLINE uint32_t ilk_cdf_sample(const float *cdf, uint32_t n, float u, 
     float r = w > 0.0f ? (u - cdf[i]) / w : 0.0f;
     *u_in = ilk_minf(ilk_maxf(r, 0.0f), 0.99999994f);
     return i;
+}
+
+/* The radiance of the discs that direction d points into (scene/lights.c's
+ * il_background_radiance less the environment). */
+IL_DEVICE_INLINE ilk_vec3 ilk_discs(const ilk_scene *sc, ilk_vec3 d)
+{
+    ilk_vec3 L = ilk_v3(0, 0, 0);
+    for (uint32_t i = 0; i < sc->num_discs; i++) {
+        const ilk_disc *c = &sc->discs[i];
+        ilk_vec3 x = ilk_cross(d, c->towards);
+        if (ilk_dot(d, c->towards) > 0.0f && ilk_dot(x, x) <= c->sin2_radius)
+            L = ilk_add(L, c->radiance);
+    }
+    return L;
 }
 
 /* Row j's conditional CDF in the map's sampling table (env_cdf). */
@@ -523,6 +551,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
      * glass bounces), so what the ray finds counts whole.  bsdf_pdf: the
      * density of the last bounce's direction, for the MIS weights. */
     bool counts_emission = true;
+    bool camera_chain = true;      /* only mirror and glass bounces so far: the sun's disc shows */
     float bsdf_pdf = 0.0f;
     for (uint32_t depth = 0;; depth++) {
         ilk_hit h;
@@ -536,6 +565,8 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
                     mis = ilk_power_heuristic(bsdf_pdf, sc->env_light_pmf * ilk_environment_pdf(sc, ray.dir));
                 L = ilk_add(L, ilk_scale(ilk_mul(beta, ilk_environment(sc, ray.dir)), mis));
             }
+            if (camera_chain)
+                L = ilk_add(L, ilk_mul(beta, ilk_discs(sc, ray.dir)));
             break;
         }
         const ilk_tri *tr = &sc->bvh.tris[h.tri];
@@ -579,6 +610,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_path_sample(const ilk_scene *sc, uint32_t x, uint3
             break;
         beta = ilk_mul(beta, weight);
         counts_emission = delta;
+        camera_chain = camera_chain && delta;
         if (!(beta.x > 0.0f || beta.y > 0.0f || beta.z > 0.0f))
             break;
         /* Russian roulette after the third vertex, as the CPU path tracer

@@ -30,6 +30,9 @@ static il_status check_supported(const il_scene *scene, bool extended, il_error 
             return il_fail(err, IL_ERR_INVALID, "material '%s': only untextured diffuse materials run on "
                            "the GPU photon kernels so far (docs/cuda.md)", m->name);
     }
+    if (scene->num_discs > ILK_MAX_DISCS)
+        return il_fail(err, IL_ERR_INVALID, "%u directional lights with a disc: the GPU shows at most %u; "
+                       "render with --device cpu (docs/cuda.md)", scene->num_discs, ILK_MAX_DISCS);
     if (!extended && (scene->num_user_lights || scene->has_environment))
         return il_fail(err, IL_ERR_INVALID, "only emissive triangles light a GPU render so far "
                        "(no point, spot or directional lights, no environment; docs/cuda.md)");
@@ -347,6 +350,11 @@ static il_status build(const il_scene *scene, uint32_t width, uint32_t height, u
     v->env_grid_h = out->env_grid_h;
     v->env_light_pmf = out->env_light_pmf;
     v->tri_light_pmf = out->tri_light_pmf;
+    for (uint32_t i = 0; i < scene->num_discs; i++)
+        v->discs[i] = (ilk_disc){.towards = to_k(scene->discs[i].towards),
+                                 .sin2_radius = scene->discs[i].sin2_radius,
+                                 .radiance = to_k(scene->discs[i].radiance)};
+    v->num_discs = scene->num_discs;
     v->epsilon = il_trace_epsilon(scene->tracer);
     v->camera.position = to_k(cam.position);
     v->camera.forward = to_k(cam.forward);

@@ -91,13 +91,15 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
     il_vec3 L = v3s(0.0f), beta = v3s(1.0f);
     il_ray ray = {.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
     uint64_t nrays = 0;
+    bool camera_chain = true; /* only mirror and glass bounces so far */
 
     /* `depth` counts the scattering events before the current ray. */
     for (uint32_t depth = 0;; depth++) {
         il_hit hit;
         nrays++;
         if (!il_trace_closest(tr, &ray, &hit)) {
-            L = v3_add(L, v3_mul(beta, il_environment_radiance(s, ray.dir)));
+            L = v3_add(L, v3_mul(beta, camera_chain ? il_background_radiance(s, ray.dir)
+                                                    : il_environment_radiance(s, ray.dir)));
             break;
         }
         uint32_t t = hit.prim;
@@ -140,6 +142,9 @@ static il_vec3 rr_camera_radiance(const void *method, il_vec3 org, il_vec3 dir, 
             il_vec2 u = il_sampler_2d(smp);
             if (!sample_glossy(&b, wo, u, &wi, &weight))
                 break;
+            /* Past a glossy bounce the sun's disc is left out: the lobe
+             * would find so small a disc too rarely to be more than noise. */
+            camera_chain = false;
         } else {
             /* Mirror or glass: same vertex order as the scene triangle, so
              * the hit's barycentrics are the scene triangle's. */

@@ -66,6 +66,7 @@ void il_lights_free(il_scene *s)
     free(s->light_cdf);
     free(s->light_pmf);
     free(s->light_recs);
+    free(s->discs);
     if (s->triangle_light) {
         for (uint32_t i = 0; i < s->num_meshes; i++)
             free(s->triangle_light[i]);
@@ -76,6 +77,8 @@ void il_lights_free(il_scene *s)
     s->light_pmf = NULL;
     s->light_recs = NULL;
     s->triangle_light = NULL;
+    s->discs = NULL;
+    s->num_discs = 0;
     s->num_lights = 0;
     s->environment_light = IL_NO_LIGHT;
 }
@@ -126,6 +129,33 @@ static il_status build_light_recs(il_scene *s, il_error *err)
         return build_fail(s, IL_ERR_MEMORY);
     for (uint32_t i = 0; i < s->num_lights; i++)
         s->light_recs[i] = light_rec(s, &s->lights[i], s->light_pmf[i]);
+    return IL_OK;
+}
+
+/* scene->discs: the directional lights whose disc has a size.  A disc of
+ * angular radius a and uniform radiance L gives a surface facing it
+ * E = L pi sin^2 a (il_directional_sample), so L = E / (pi sin^2 a), with
+ * sin^2 a = (1 - cos a)(1 + cos a) in double from the float cosine light
+ * samples draw with, so that the disc the camera sees is theirs. */
+static il_status build_discs(il_scene *s, il_error *err)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->num_lights; i++)
+        n += s->lights[i].kind == IL_LIGHTK_DIRECTIONAL && s->lights[i].cos_cutoff < 1.0f;
+    if (n == 0)
+        return IL_OK;
+    s->discs = il_malloc(n * sizeof(il_light_disc), err);
+    if (!s->discs)
+        return build_fail(s, IL_ERR_MEMORY);
+    for (uint32_t i = 0; i < s->num_lights; i++) {
+        const il_light *l = &s->lights[i];
+        if (l->kind != IL_LIGHTK_DIRECTIONAL || !(l->cos_cutoff < 1.0f))
+            continue;
+        double c = l->cos_cutoff, sin2 = (1.0 - c) * (1.0 + c);
+        s->discs[s->num_discs++] = (il_light_disc){
+            .towards = v3_neg(l->direction), .sin2_radius = (float)sin2,
+            .radiance = v3_scale(l->intensity, (float)(1.0 / (3.14159265358979323846 * sin2)))};
+    }
     return IL_OK;
 }
 
@@ -252,7 +282,8 @@ il_status il_lights_build(il_scene *s, il_error *err)
     for (uint32_t i = 0; i < count; i++)
         s->light_pmf[i] = il_distrib1d_pmf(&d, i);
     il_distrib1d_free(&d);
-    return build_light_recs(s, err);
+    st = build_light_recs(s, err);
+    return st == IL_OK ? build_discs(s, err) : st;
 }
 
 /* The light il_distrib1d_sample_discrete picks from the scene's selection
@@ -280,6 +311,17 @@ il_vec3 il_environment_radiance(const il_scene *s, il_vec3 dir)
     if (s->envmap)
         return il_envmap_eval(s->envmap, dir);
     return s->environment.radiance;
+}
+
+il_vec3 il_background_radiance(const il_scene *s, il_vec3 dir)
+{
+    il_vec3 L = il_environment_radiance(s, dir);
+    for (uint32_t i = 0; i < s->num_discs; i++) {
+        const il_light_disc *d = &s->discs[i];
+        if (v3_dot(dir, d->towards) > 0.0f && v3_length2(v3_cross(dir, d->towards)) <= d->sin2_radius)
+            L = v3_add(L, d->radiance);
+    }
+    return L;
 }
 
 /* Converts the area density 1/A of a uniform point on a triangle to solid

@@ -51,6 +51,12 @@ float il_light_pdf_environment(const il_scene *scene, il_vec3 p, il_vec3 dir);
 il_vec3 il_emitted_radiance(const il_material *m, il_vec3 ng, il_vec3 w);
 /* Radiance arriving from the environment along direction -dir (dir points away from the scene). */
 il_vec3 il_environment_radiance(const il_scene *scene, il_vec3 dir);
+/* What the camera sees along dir leaving the scene, directly or through
+ * mirrors and glass: the environment plus the discs of directional lights
+ * (the sun; scene->discs).  Only for paths with no diffuse or glossy vertex
+ * yet: after one, light sampling takes a directional light as a delta (it
+ * is never found by a BSDF ray), so its disc must not be added there. */
+il_vec3 il_background_radiance(const il_scene *scene, il_vec3 dir);
 /* Samples a direction towards the environment (pointing away from the
  * scene) for u in [0,1)^2: importance sampled from a map, uniform over the
  * sphere for a constant sky.  Returns the radiance arriving from *dir and

@@ -117,6 +117,17 @@ typedef struct il_light_rec {
     il_lrec_kind kind;
 } il_light_rec;
 
+/* A directional light's disc as the camera sees it (the sun): the
+ * directions within its angular radius of `towards` carry `radiance`.
+ * Membership is tested on the sine, |dir x towards|^2 <= sin2_radius (and
+ * dir . towards > 0): for a disc as small as the sun's, 1 - cos is 10^-5
+ * and a float dot product would blur its edge by a per cent. */
+typedef struct il_light_disc {
+    il_vec3 towards;       /* unit, from the scene to the disc's centre */
+    float sin2_radius;     /* sin^2 of the angular radius of the light's cos_cutoff */
+    il_vec3 radiance;      /* irradiance / (pi sin2_radius) */
+} il_light_disc;
+
 typedef struct il_scene_camera {
     il_camera_desc desc;   /* defaults resolved */
     bool present;
@@ -160,6 +171,7 @@ struct il_scene {
     uint32_t **triangle_light;       /* per mesh, per triangle: index into lights or IL_NO_LIGHT */
     il_light_rec *light_recs;        /* num_lights entries: what batched sampling reads of a light */
     uint32_t environment_light;      /* index into lights or IL_NO_LIGHT */
+    il_light_disc *discs;   uint32_t num_discs; /* the directional lights with a disc */
 };
 
 /* Records a warning (printf format): stored for `illum info` and passed to the log callback. */

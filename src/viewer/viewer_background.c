@@ -1,6 +1,6 @@
 /* The mesh view's background: the environment (`--env`, or the scene's
- * sky) where no triangle covers a sample, as `illum render` shows it where a
- * camera ray escapes.  Computed on the CPU (viewer_env.c) into a float
+ * sky) and the sun's disc where no triangle covers a sample, as `illum
+ * render` shows them where a camera ray escapes.  Computed on the CPU (viewer_env.c) into a float
  * texture that the mesh's resolve pass reads (viewer_mesh.c); a quarter of
  * the size while the camera moves. */
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* The mesh view's background on the CPU: the library's own camera and
- * environment lookup (il_camera_ray_dir, il_environment_radiance), one
+ * background lookup (il_camera_ray_dir, il_background_radiance), one
  * direction per pixel centre, so the environment looks as `illum render`
  * shows it where a camera ray escapes. */
 #include "viewer/viewer_env.h"
@@ -12,7 +12,7 @@
 
 bool il_view_has_environment(const il_scene *scene)
 {
-    return scene->has_environment;
+    return scene->has_environment || scene->num_discs > 0;
 }
 
 float *il_view_environment_pixels(const il_scene *scene, const il_camera_desc *camera, int w,
@@ -26,7 +26,7 @@ float *il_view_environment_pixels(const il_scene *scene, const il_camera_desc *c
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             il_vec3 d = il_camera_ray_dir(&cam, (float)x + 0.5f, (float)y + 0.5f);
-            il_vec3 L = il_environment_radiance(scene, d);
+            il_vec3 L = il_background_radiance(scene, d);
             float *p = rgb + ((size_t)y * (size_t)w + (size_t)x) * 3;
             p[0] = L.x;
             p[1] = L.y;

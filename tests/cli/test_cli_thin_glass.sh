@@ -44,6 +44,21 @@ expect_no_file badportal.png "bad portal: no image"
 expect_exit 0 "render" -- "$ILLUM" render "$ROOM" --spp 4 --width 64 --height 48 -o room.exr
 expect_file room.exr "render: the image"
 
+# The sun seen through the window (5 degrees up, due south): its disc is
+# brighter than a half EXR holds, so the half file keeps 65504 there and
+# says so; --exr-float keeps it and says nothing (--fov 20: the disc
+# covers a few pixels).
+expect_exit 0 "the sun in view" -- "$ILLUM" render "$ROOM" --sky clear --sun 5,180 --spp 16 --fov 20 \
+    --width 160 --height 120 -o sun.exr
+expect_stderr "brighter than 65504, the most a half EXR holds" "the sun in view: the warning"
+expect_exit 0 "the sun in view, float" -- "$ILLUM" render "$ROOM" --sky clear --sun 5,180 --spp 16 --fov 20 \
+    --width 160 --height 120 --exr-float -o sunf.exr
+checks=$((checks + 1))
+grep -q "half EXR" err.txt && fail "the sun in view, float: a warning about half floats"
+expect_exit 0 "compare the two" -- "$ILLUM" compare sun.exr sunf.exr
+checks=$((checks + 1))
+awk '/^max_abs_error/ { exit !($2 > 1e5) }' out.txt || fail "the sun in view: the float file keeps the disc's radiance"
+
 # An OBJ window: one transparent sheet (d 0.4) becomes a pane, with a warning.
 printf 'newmtl pane\nKd 0 0 0\nd 0.4\nNi 1.5\nnewmtl wall\nKd 0.5 0.5 0.5\nKe 1 1 1\n' > sheet.mtl
 printf 'mtllib sheet.mtl\no glass\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl pane\nf 1 2 3 4\no lamp\nv 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nusemtl wall\nf 5 6 7 8\n' > sheet.obj

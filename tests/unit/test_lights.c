@@ -14,7 +14,48 @@ static double lum(il_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
  * centre's times (1 + cos(D/2)) / 2), and the mean of radiance times the
  * cosine is E cos, the irradiance of the point light it replaces, on any
  * surface the disc is wholly above; a point (D = 0) gives the centre
- * exactly.  Diameters outside [0, 90], or on another light, are refused. */
+ * exactly; the camera sees it with that irradiance (check_background).
+ * Diameters outside [0, 90], or on another light, are refused. */
+/* What the camera sees of the disc (il_background_radiance): uniform
+ * radiance L inside its radius, none outside, with the irradiance the light
+ * gives: int L cos dw over the disc = L pi sin^2(radius) = E on a surface
+ * facing it (quadrature over a cap 1.5 times as wide, in polar coordinates
+ * about the centre); a point light's has none. */
+static void check_background(const il_scene *s, il_vec3 axis, double half, bool disc)
+{
+    CHECK(s->num_discs == (disc ? 1u : 0u));
+    il_frame f = il_frame_from_normal(axis);
+    if (!disc) {
+        il_vec3 L = il_background_radiance(s, axis);
+        CHECK(L.x == 0.0f && L.y == 0.0f && L.z == 0.0f);
+        return;
+    }
+    enum { NT = 3000, NP = 64 };
+    double outer = 1.5 * half, sum = 0.0, inside_min = INFINITY, inside_max = 0.0;
+    for (int i = 0; i < NT; i++) {
+        double t = (i + 0.5) * outer / NT;
+        for (int j = 0; j < NP; j++) {
+            double p = (j + 0.5) * 2.0 * PI_D / NP;
+            il_vec3 local = v3((float)(sin(t) * cos(p)), (float)(sin(t) * sin(p)), (float)cos(t));
+            il_vec3 L = il_background_radiance(s, v3_normalize(il_frame_to_world(&f, local)));
+            sum += L.x * cos(t) * sin(t) * (outer / NT) * (2.0 * PI_D / NP);
+            if (t < 0.99 * half) {
+                inside_min = fmin(inside_min, L.x);
+                inside_max = fmax(inside_max, L.x);
+            } else if (t > 1.01 * half) {
+                CHECK(L.x == 0.0f);
+            }
+        }
+    }
+    /* The radius is the float cosine's (0.14% wider than asked for the sun's). */
+    double want_L = 2.0 / (PI_D * s->discs[0].sin2_radius);
+    CHECK_REL(s->discs[0].sin2_radius, sin(half) * sin(half), 3e-3);
+    printf("  seen: L %.6g inside (expected %.6g), int L cos dw %.6f (expected 2)\n", inside_min, want_L, sum);
+    CHECK(inside_min == inside_max);
+    CHECK_REL(inside_min, want_L, 1e-6);
+    CHECK_REL(sum, 2.0, 1e-3);
+}
+
 static void test_disc(void)
 {
     il_error err = {0};
@@ -53,6 +94,7 @@ static void test_disc(void)
         CHECK_NEAR(sum_dir[0] / (G * G), axis.x * shrink, 2e-5);
         CHECK_NEAR(sum_dir[1] / (G * G), axis.y * shrink, 2e-5);
         CHECK_NEAR(sum_dir[2] / (G * G), axis.z * shrink, 2e-5);
+        check_background(s, axis, half, diameters[k] > 0.0f);
         il_scene_release(s);
     }
     il_scene *s = NULL;

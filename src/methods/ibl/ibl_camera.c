@@ -96,7 +96,7 @@ bool il_ibl_camera_vertex(const il_ibl_camera *c, uint32_t x, uint32_t y, uint32
         il_hit hit;
         (*rays)++;
         if (!il_trace_closest(tr, &ray, &hit)) {
-            L = v3_add(L, v3_mul(beta, il_environment_radiance(s, ray.dir)));
+            L = v3_add(L, v3_mul(beta, il_background_radiance(s, ray.dir)));
             break;
         }
         il_surface surf;

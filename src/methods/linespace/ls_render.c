@@ -79,7 +79,8 @@ static float lookup_probability(const ls_method *m, const il_material *mat)
 typedef struct ls_path {
     il_vec3 L, beta;
     il_ray ray;                    /* the next ray to trace */
-    bool specular;                 /* no non-delta bounce yet */
+    bool specular;                 /* the ray left the camera or a delta lobe */
+    bool camera_chain;             /* ... and so did every ray before it */
     bool traced;                   /* a non-delta bounce was traced on, not read */
     uint32_t depth;                /* scattering events before `ray` */
     bool shadow, read;             /* pending: shadow_ray's light, read_L */
@@ -103,7 +104,7 @@ static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
     p->L = v3s(0.0f);
     p->beta = v3s(1.0f);
     p->ray = (il_ray){.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
-    p->specular = true;
+    p->specular = p->camera_chain = true;
     p->traced = false;
     p->depth = 0;
     p->shadow = p->read = false;
@@ -150,7 +151,7 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
     if (!m->set.fallback || (r == IL_LS_EMPTY && !m->set.fallback_empty))
         return LS_STOP;
     p->beta = p->next;
-    p->specular = false;
+    p->specular = p->camera_chain = false;
     p->traced = true;
     return path_advance(m->scene, p, p->x, p->ng, p->wi, p->rr_u);
 }
@@ -171,7 +172,8 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
     p->shadow = p->read = false;
     if (!hit) {
         if (p->specular)
-            p->L = v3_add(p->L, v3_mul(p->beta, il_environment_radiance(s, p->ray.dir)));
+            p->L = v3_add(p->L, v3_mul(p->beta, p->camera_chain ? il_background_radiance(s, p->ray.dir)
+                                                                : il_environment_radiance(s, p->ray.dir)));
         return LS_STOP;
     }
     il_vec3 wo = v3_neg(p->ray.dir);
@@ -243,7 +245,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
             return path_after_lookup(m, p, r, Li, coarse, cnt);
         }
         p->beta = next;
-        p->specular = false;
+        p->specular = p->camera_chain = false;
         p->traced = true;
     }
     return path_advance(s, p, surf->p, surf->ng, bs.wi, u[3].y);

@@ -262,8 +262,9 @@ typedef struct il_pm_vertex {
 
 /* Follows the ray through delta bounces (drawing their lobes from smp) to
  * its first non-delta hit, at most max_depth bounces.  With emitted != NULL
- * it adds the light of emitters and the environment met on the way (seen
- * directly or through delta bounces) to *emitted, times the throughput.
+ * (camera rays only) it adds the light of emitters and the background
+ * (il_background_radiance: the sky and the sun's disc) met on the way, seen
+ * directly or through delta bounces, to *emitted, times the throughput.
  * False when the path leaves the scene, is absorbed or runs out of depth. */
 bool il_pm_trace_to_diffuse(const il_scene *scene, il_ray ray, il_sampler *smp, uint32_t max_depth,
                             il_vec3 *emitted, il_pm_vertex *out, uint64_t *rays);

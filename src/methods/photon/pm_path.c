@@ -16,7 +16,7 @@ bool il_pm_trace_to_diffuse(const il_scene *scene, il_ray ray, il_sampler *smp, 
         (*rays)++;
         if (!il_trace_closest(tr, &ray, &hit)) {
             if (emitted)
-                *emitted = v3_add(*emitted, v3_mul(beta, il_environment_radiance(scene, ray.dir)));
+                *emitted = v3_add(*emitted, v3_mul(beta, il_background_radiance(scene, ray.dir)));
             return false;
         }
         il_pm_vertex *v = out;

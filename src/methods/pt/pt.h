@@ -63,6 +63,7 @@ typedef struct il_pt_state {
     il_vec3 prev_p;        /* the previous vertex */
     float prev_pdf;        /* solid-angle pdf of the BSDF sample that led here */
     bool specular;         /* the ray left a delta lobe (or the camera) */
+    bool camera_chain;     /* ... and so did every ray before it: the camera sees what it finds */
     bool shadow;           /* shadow_ray must be traced */
     uint32_t depth;        /* scattering events before st->ray */
     il_ray ray;

@@ -36,6 +36,7 @@ void il_pt_begin(il_pt_state *st, il_vec3 org, il_vec3 dir)
     st->L = v3s(0.0f);
     st->beta = v3s(1.0f);
     st->specular = true;          /* camera rays see emitters at full weight */
+    st->camera_chain = true;
     st->prev_pdf = 0.0f;
     st->prev_p = org;
     st->depth = 0;
@@ -60,11 +61,13 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     const il_tracer *tr = s->tracer;
     st->shadow = false;
     if (!hit) {
-        /* A camera or specular ray takes the sky at weight 1; a BSDF ray
-         * weighs it against light sampling's density (one lookup for both). */
+        /* A camera or specular ray takes the sky at weight 1 (and the sun's
+         * disc, when the camera sees it); a BSDF ray weighs the sky against
+         * light sampling's density (one lookup for both). */
         float light_pdf = 0.0f;
-        il_vec3 le = st->specular ? il_environment_radiance(s, st->ray.dir)
-                                  : il_environment_light_eval(s, st->prev_p, st->ray.dir, &light_pdf);
+        il_vec3 le = st->camera_chain ? il_background_radiance(s, st->ray.dir)
+                     : st->specular   ? il_environment_radiance(s, st->ray.dir)
+                                      : il_environment_light_eval(s, st->prev_p, st->ray.dir, &light_pdf);
         if (!v3_is_zero(le)) {
             float w = st->specular ? 1.0f : mis_weight(strategy, IL_PT_BSDF_ONLY, st->prev_pdf, light_pdf);
             st->L = add_scaled(st->L, st->beta, le, w);
@@ -172,6 +175,7 @@ bool il_pt_step_at(const il_scene *s, il_pt_state *st, const il_hit *hit, const 
     if (v3_is_zero(beta) || !v3_is_finite(beta))
         return false;
     st->specular = delta;
+    st->camera_chain = st->camera_chain && delta;
     st->prev_pdf = pdf;
     st->prev_p = surf.p;
     st->ray = next;

@@ -45,7 +45,7 @@ static bool trace_to_diffuse(const il_scene *scene, il_ray ray, il_sampler *smp,
         il_hit hit;
         (*rays)++;
         if (!il_trace_closest(tr, &ray, &hit)) {
-            *L = v3_add(*L, v3_mul(*beta, il_environment_radiance(scene, ray.dir)));
+            *L = v3_add(*L, v3_mul(*beta, il_background_radiance(scene, ray.dir)));
             return false;
         }
         il_scene_surface(scene, hit.mesh, hit.prim, hit.b1, hit.b2, s);
