@@ -5,7 +5,7 @@
 #include "cli/cli.h"
 
 static const char *help =
-    "usage: illum compare A B [--diff DIFF.{png,exr,...}] [--max-rmse X] [--max-rel-mse X]\n"
+    "usage: illum compare A B [--diff DIFF.{png,exr,...}] [--max-rmse X] [--max-rel-mse X] [--json]\n"
     "\n"
     "Compares image A against the reference B (EXR, HDR, PFM, PNG, JPEG; same size)\n"
     "and prints: RMSE over all channels, relative MSE (mean of (a-b)^2/(b^2+0.01)),\n"

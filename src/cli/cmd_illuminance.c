@@ -45,7 +45,7 @@ static const char *help =
     "  --max-depth D          bounces, the sensor counting as the first: 1 is direct\n"
     "                         light only (default 8)\n"
     "  --sampler sobol|pcg    (default sobol)\n"
-    "  --seed S  --threads T  --quiet\n"
+    "  --seed S  --threads T  -q, --quiet\n"
     "  --stats STATS.json     the summary as JSON (the figures printed, the run's\n"
     "                         samples, rays and seconds)\n"
     "  -o OUT.csv             every reading: x,y,z,nx,ny,nz,lux,lux_error,\n"

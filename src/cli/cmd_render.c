@@ -54,7 +54,7 @@ static const char *help =
     "  --checkpoint-every S   under mpirun (pt): save the finished tiles every S seconds;\n"
     "                         the same command run again continues from them\n"
     "  --checkpoint FILE      the checkpoint file (default: the first output + .ckpt)\n"
-    "  --quiet                no progress bar and no warnings\n"
+    "  -q, --quiet            no progress bar and no warnings\n"
     "\n"
     "While rendering, a progress bar with ETA and rays/s is drawn on stderr when it\n"
     "is a terminal.  Ctrl-C stops after the current pass and writes what is done.\n";

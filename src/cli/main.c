@@ -33,7 +33,8 @@ static const char *usage =
     "SCENE is a mesh file (OBJ, glTF/GLB, PLY, 3DS, any format assimp reads), a .json\n"
     "scene file (docs/scene-format.md) or a built-in name: cornell, atrium,\n"
     "simple-room, shadow-room, box-room, office, cornell-spheres.\n"
-    "'illum COMMAND --help' lists a command's options.\n"
+    "'illum COMMAND --help' (or 'illum help COMMAND') lists a command's options;\n"
+    "'illum --version' prints the version.\n"
     "\n"
     "exit status: 0 success, 1 bad input (scene, file, option value), 2 usage error,\n"
     "             3 runtime failure, 4 compare: images differ more than allowed,\n"
@@ -61,6 +62,8 @@ int main(int argc, char **argv)
             if (!strcmp(argv[2], "envmap")) return cmd_envmap(2, sub);
             if (!strcmp(argv[2], "tonemap")) return cmd_tonemap(2, sub);
             if (!strcmp(argv[2], "view")) return cmd_view(2, sub);
+            cli_error("unknown command '%s' (try 'illum --help')", argv[2]);
+            return IL_EXIT_USAGE;
         }
         fputs(usage, stdout);
         return IL_EXIT_OK;

@@ -9,6 +9,10 @@ for c in render info compare; do
     expect_stdout "usage: illum $c" "$c --help"
 done
 expect_exit 0 "version" -- "$ILLUM" --version
+expect_exit 0 "help render" -- "$ILLUM" help render
+expect_stdout "usage: illum render" "help render"
+expect_exit 2 "help of an unknown command" -- "$ILLUM" help nosuch
+expect_stderr "unknown command 'nosuch'" "help nosuch"
 
 expect_exit 0 "info cornell" -- "$ILLUM" info cornell
 expect_stdout "triangles:  32" "info cornell"
