@@ -8,10 +8,12 @@
  * format", 1994) without storing anything, and refuses any count that the
  * rest of the file is too short to hold: in a binary file each value
  * takes at least its size, in an ASCII one each instance a line and each
- * list value a character and a separator.  A header line that is not PLY
- * is refused too (assimp 5.2 loops forever on some, such as "element
- * vertex 4.3" in a binary file).  A binary body that ends early is left to
- * assimp, which reports it. */
+ * list value a character and a separator.  A list's negative count is
+ * refused (assimp reads it as 4e9 values), and so is a header of more
+ * than 64 elements or 1024 properties, whose counts this could not check.
+ * A header line that is not PLY is refused too (assimp 5.2 loops forever
+ * on some, such as "element vertex 4.3" in a binary file).  A binary body
+ * that ends early is left to assimp, which reports it. */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +27,8 @@ enum { PLY_ASCII, PLY_LITTLE, PLY_BIG };
 typedef struct ply_property {
     int size;       /* bytes of a scalar, or of each list value */
     int count_size; /* a list's count: 1, 2 or 4 bytes; 0 for a scalar */
+    bool count_signed; /* its type is char, short or int (assimp 5.2 takes a
+                          negative one as 4e9 values: it must be refused) */
 } ply_property;
 
 typedef struct ply_element {
@@ -53,6 +57,19 @@ static int type_size(const char *t)
         if (!strcmp(t, types[i].name))
             return types[i].size;
     return 0;
+}
+
+/* Whether PLY integer type t is signed. */
+static bool type_signed(const char *t)
+{
+    return !strcmp(t, "char") || !strcmp(t, "int8") || !strcmp(t, "short") || !strcmp(t, "int16") ||
+           !strcmp(t, "int") || !strcmp(t, "int32");
+}
+
+static il_status negative_count(ply_reader *r, const ply_element *e)
+{
+    return il_fail(r->err, IL_ERR_FORMAT, "%s: element '%s': a list with a negative count: the file "
+                   "is corrupt", r->path, e->name);
 }
 
 /* n things (`what`) that the rest of the file cannot hold. */
@@ -87,8 +104,9 @@ static uint64_t parse_count(const unsigned char *tok, size_t len)
     return n;
 }
 
-/* Binary: an unsigned count of `size` bytes in the file's byte order. */
-static uint64_t read_count(ply_reader *r, int size)
+/* Binary: a count of `size` bytes in the file's byte order; *negative
+ * when its type is signed and its top bit set. */
+static uint64_t read_count(ply_reader *r, int size, bool is_signed, bool *negative)
 {
     uint64_t v = 0;
     for (int i = 0; i < size; i++) {
@@ -96,6 +114,7 @@ static uint64_t read_count(ply_reader *r, int size)
         v = (v << 8) | r->p[k];
     }
     r->p += size;
+    *negative = is_signed && (v >> (8 * size - 1)) != 0;
     return v;
 }
 
@@ -118,6 +137,10 @@ static bool walk_instance(ply_reader *r, const ply_element *e, il_status *s)
                 break;
             if (!q->count_size)
                 continue;
+            if (tok[0] == '-') {
+                *s = negative_count(r, e);
+                return false;
+            }
             n = parse_count(tok, len);
             if (n > (uint64_t)(r->end - r->p + 1) / value_bytes_ascii) {
                 *s = too_short(r, e, "values in a list", n);
@@ -133,7 +156,12 @@ static bool walk_instance(ply_reader *r, const ply_element *e, il_status *s)
                 r->p += q->size;
                 continue;
             }
-            n = read_count(r, q->count_size);
+            bool negative;
+            n = read_count(r, q->count_size, q->count_signed, &negative);
+            if (negative) {
+                *s = negative_count(r, e);
+                return false;
+            }
             if (n > (uint64_t)(r->end - r->p) / (uint64_t)q->size) {
                 *s = too_short(r, e, "values in a list", n);
                 return false;
@@ -180,8 +208,9 @@ typedef struct ply_header {
 } ply_header;
 
 /* One header line (NUL-terminated, after "ply") into h; NULL, or what is
- * wrong with it.  *skip: valid, but more than this check's tables hold. */
-static const char *header_line(const char *line, ply_header *h, bool *skip)
+ * wrong with it (more elements or properties than this check's tables
+ * hold too: a count it could not check would reach assimp unchecked). */
+static const char *header_line(const char *line, ply_header *h, bool *unsupported)
 {
     char w[5][32] = {{0}};
     int fields = sscanf(line, "%31s %31s %31s %31s %31s", w[0], w[1], w[2], w[3], w[4]);
@@ -200,10 +229,9 @@ static const char *header_line(const char *line, ply_header *h, bool *skip)
         char *stop;
         if (fields != 3 || !(w[2][0] >= '0' && w[2][0] <= '9'))
             return "an element needs a name and a whole count";
-        if (h->num_elems == PLY_MAX_ELEMS) {
-            *skip = true;
-            return NULL;
-        }
+        *unsupported = h->num_elems == PLY_MAX_ELEMS;
+        if (*unsupported)
+            return "more than 64 elements: illum reads PLY files with up to 64";
         ply_element *e = &h->elems[h->num_elems++];
         memcpy(e->name, w[1], sizeof e->name);
         e->count = strtoull(w[2], &stop, 10);
@@ -213,15 +241,15 @@ static const char *header_line(const char *line, ply_header *h, bool *skip)
     }
     if (!strcmp(w[0], "property")) {
         bool list = !strcmp(w[1], "list");
-        ply_property q = {list ? type_size(w[3]) : type_size(w[1]), list ? type_size(w[2]) : 0};
+        ply_property q = {list ? type_size(w[3]) : type_size(w[1]), list ? type_size(w[2]) : 0,
+                          list && type_signed(w[2])};
         if (h->num_elems == 0)
             return "a property before any element";
         if (q.size == 0 || fields != (list ? 5 : 3) || (list && (q.count_size == 0 || q.count_size == 8)))
             return "a property needs a known type (and a list an integer count type) and a name";
-        if (h->num_props == PLY_MAX_PROPS) {
-            *skip = true;
-            return NULL;
-        }
+        *unsupported = h->num_props == PLY_MAX_PROPS;
+        if (*unsupported)
+            return "more than 1024 properties: illum reads PLY files with up to 1024";
         h->props[h->num_props++] = q;
         h->elems[h->num_elems - 1].num_props++;
         return NULL;
@@ -229,9 +257,8 @@ static const char *header_line(const char *line, ply_header *h, bool *skip)
     return "not a PLY header line (format, element, property, comment, obj_info, end_header)";
 }
 
-/* The header up to "end_header" into h.  IL_OK with *skip set when it is
- * valid but too large to check. */
-static il_status read_header(char *text, const char *path, ply_header *h, bool *skip, il_error *err)
+/* The header up to "end_header" into h. */
+static il_status read_header(char *text, const char *path, ply_header *h, il_error *err)
 {
     h->format = -1;
     h->num_elems = h->num_props = 0;
@@ -253,10 +280,11 @@ static il_status read_header(char *text, const char *path, ply_header *h, bool *
                 return il_fail(err, IL_ERR_FORMAT, "%s: the PLY header has no format line", path);
             return IL_OK;
         }
-        const char *why = lineno == 1 ? NULL : header_line(line, h, skip);
+        bool unsupported = false;
+        const char *why = lineno == 1 ? NULL : header_line(line, h, &unsupported);
         if (why)
-            return il_fail(err, IL_ERR_FORMAT, "%s: line %d of the PLY header: %s: the file is "
-                           "corrupt", path, lineno, why);
+            return il_fail(err, IL_ERR_FORMAT, "%s: line %d of the PLY header: %s%s", path, lineno, why,
+                           unsupported ? "" : ": the file is corrupt");
         line = nl + 1;
     }
 }
@@ -273,9 +301,8 @@ il_status il_ply_check(const char *path, il_error *err)
         free(text);
         return il_fail(err, IL_ERR_MEMORY, "%s: out of memory", path);
     }
-    bool skip = false;
-    s = read_header(text, path, h, &skip, err);
-    if (s == IL_OK && !skip) {
+    s = read_header(text, path, h, err);
+    if (s == IL_OK) {
         ply_reader r = {path, (const unsigned char *)h->body, (const unsigned char *)text + n, h->format,
                         err, false};
         for (int i = 0; i < h->num_elems && s == IL_OK && !r.stop; i++)

@@ -396,6 +396,36 @@ static void test_ply_counts(void)
     CHECK(load_err(tmp("many-vertices.ply"), &err) == IL_ERR_FORMAT);
     CHECK(contains(err.message, "'vertex'") && contains(err.message, "2000000000"));
 
+    /* A negative list count (assimp takes -3 as 4e9 values): ASCII, and a
+     * binary signed char 0xFD. */
+    snprintf(text, sizeof text, "ply\nformat ascii 1.0\n");
+    snprintf(text + strlen(text), sizeof text - strlen(text), verts, "3", "char");
+    strcat(text, "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n-3 0 1 2\n");
+    write_text(tmp("negative.ply"), text);
+    CHECK(load_err(tmp("negative.ply"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "'face'") && contains(err.message, "negative count"));
+    {
+        unsigned char buf[2048] = {0};
+        int n = snprintf((char *)buf, sizeof buf, "ply\nformat binary_little_endian 1.0\n");
+        n += snprintf((char *)buf + n, sizeof buf - (size_t)n, verts, "0", "char");
+        buf[n] = 0xFD;               /* -3, then 1500 bytes that could hold 3 ints */
+        write_file(tmp("negative-bin.ply"), buf, (size_t)n + 1500);
+        CHECK(load_err(tmp("negative-bin.ply"), &err) == IL_ERR_FORMAT);
+        CHECK(contains(err.message, "negative count"));
+    }
+    /* More elements than the check holds: refused, not let through
+     * unchecked (64 empty elements, then 2e9 vertices). */
+    {
+        static char many[8192];
+        int n = snprintf(many, sizeof many, "ply\nformat binary_little_endian 1.0\n");
+        for (int k = 0; k < 64; k++)
+            n += snprintf(many + n, sizeof many - (size_t)n, "element d%d 0\nproperty float a\n", k);
+        snprintf(many + n, sizeof many - (size_t)n, "element vertex 2000000000\nproperty float x\nend_header\n");
+        write_text(tmp("many-elements.ply"), many);
+        CHECK(load_err(tmp("many-elements.ply"), &err) == IL_ERR_FORMAT);
+        CHECK(contains(err.message, "more than 64 elements"));
+    }
+
     /* Headers that are not PLY (assimp loops forever on some of them). */
     const char *bad_headers[][2] = {
         {"ply\nformat binary_little_endian 1.0\nelement vertex 4.3\nend_header\n", "whole count"},
