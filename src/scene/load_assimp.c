@@ -710,41 +710,6 @@ static float *gltf_emissive_strengths(const loader *L)
     return out;
 }
 
-/* assimp answers a broken .gltf/.glb with "No suitable reader found": say
- * what is wrong instead, when it is plain to see.  False when nothing is found. */
-static bool gltf_diagnose(const char *path, il_error *err)
-{
-    char *buf;
-    size_t n;
-    if (il_load_read_file(path, &buf, &n, NULL) != IL_OK)
-        return false;
-    bool found = true;
-    const unsigned char *u = (const unsigned char *)buf;
-    if (n >= 4 && memcmp(buf, "glTF", 4) == 0) {
-        uint32_t len = n >= 12 ? (u[8] | u[9] << 8 | u[10] << 16 | (uint32_t)u[11] << 24) : 0;
-        if (n < 20 || len > n)
-            il_fail(err, IL_ERR_FORMAT, "%s: truncated GLB file (%zu bytes, the header says %u)",
-                    path, n, len);
-        else
-            found = false;
-    } else {
-        const char *end = NULL;
-        cJSON *j = cJSON_ParseWithLengthOpts(buf, n, &end, false);
-        if (j) {
-            found = false;
-        } else {
-            unsigned line = 1, col = 1;
-            for (const char *p = buf; end && p < end && p < buf + n; p++)
-                line += *p == '\n', col = *p == '\n' ? 1 : col + 1;
-            il_fail(err, IL_ERR_FORMAT, "%s: broken glTF JSON near line %u, column %u%s", path,
-                    line, col, end && end >= buf + n ? " (the file ends too early)" : "");
-        }
-        cJSON_Delete(j);
-    }
-    free(buf);
-    return found;
-}
-
 /* ------------------------------------------------ OBJ: truncation checks */
 
 /* assimp reads a cut-off OBJ without complaint (a last "v 0.5 0." becomes a
@@ -823,9 +788,10 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
         return il_fail(err, IL_ERR_IO, "%s: no such file", path);
     fclose(f);
 
-    il_status cs = has_ext(path, ".obj")   ? obj_check(path, err)
-                   : has_ext(path, ".ply") ? il_ply_check(path, err)
-                                           : IL_OK;
+    il_status cs = has_ext(path, ".obj")                              ? obj_check(path, err)
+                   : has_ext(path, ".ply")                            ? il_ply_check(path, err)
+                   : has_ext(path, ".gltf") || has_ext(path, ".glb") ? il_gltf_check(path, err)
+                                                                      : IL_OK;
     if (cs != IL_OK)
         return cs;
 
@@ -835,8 +801,6 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
      * faces are not removed here: il_scene_add_mesh drops and counts them. */
     const struct aiScene *ai = aiImportFile(path, aiProcess_ValidateDataStructure);
     if (!ai) {
-        if ((has_ext(path, ".gltf") || has_ext(path, ".glb")) && gltf_diagnose(path, err))
-            return IL_ERR_FORMAT;
         const char *msg = aiGetErrorString();
         return il_fail(err, IL_ERR_FORMAT, "%s: %s", path,
                        msg && msg[0] ? msg : "not a mesh file assimp can read");

@@ -36,6 +36,13 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
  * body merely ends early (assimp reports that). */
 il_status il_ply_check(const char *path, il_error *err);
 
+/* A glTF 2.0 file's GLB layout, JSON and byte ranges (buffers,
+ * bufferViews, accessors) against the spec and the bytes it holds
+ * (gltf_check.c): IL_ERR_FORMAT naming the file and what is wrong (assimp
+ * would read past a buffer or allocate what the file claims); IL_OK
+ * otherwise. */
+il_status il_gltf_check(const char *path, il_error *err);
+
 /* Reads a whole file into a NUL-terminated buffer (free() it); IL_ERR_IO naming
  * the file when it cannot be read. */
 il_status il_load_read_file(const char *path, char **out, size_t *size, il_error *err);

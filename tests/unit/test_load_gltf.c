@@ -269,8 +269,36 @@ static void test_corrupt(void)
     write_file(tmp("short.gltf"), t, strlen(t));
     CHECK(il_scene_load(tmp("short.gltf"), NULL, &s, &err) == IL_ERR_FORMAT);
     CHECK(s == NULL);
-    CHECK(contains(err.message, "short.gltf: GLTF: buffer"));
+    CHECK(contains(err.message, "short.gltf: buffers[0] claims 60 bytes, but holds 30"));
     free(t);
+    /* Byte ranges assimp would trust (il_gltf_check): a bufferView offset
+     * of 2^64 - 1 (assimp copied from before its buffer), one past its
+     * buffer, an accessor past its view, a view of a missing buffer. */
+    const char *ranges[][3] = {
+        {"\"byteOffset\":0,\"byteLength\":48", "\"byteOffset\":18446744073709551615,\"byteLength\":48",
+         "bufferViews[0].byteOffset is out of range"},
+        {"\"byteOffset\":48,\"byteLength\":12", "\"byteOffset\":52,\"byteLength\":12",
+         "bufferViews[1] (bytes 52 to 64) runs past its buffer's 60 bytes"},
+        {"\"count\":6,", "\"count\":4294967295,", "accessors[1]: 4294967295 elements"},
+        {"\"buffer\":0,\"byteOffset\":48", "\"buffer\":3,\"byteOffset\":48",
+         "bufferViews[1].buffer 3: there are 1 buffers"}};
+    for (size_t k = 0; k < sizeof ranges / sizeof ranges[0]; k++) {
+        t = gltf_text("\"buffers\":[{\"byteLength\":60,\"uri\":"
+                      "\"data:application/octet-stream;base64," QUAD_B64 "\"}]");
+        char *at = strstr(t, ranges[k][0]);
+        CHECK(at != NULL);
+        if (at) {
+            size_t n = strlen(t) + 64;
+            char *u = malloc(n);
+            snprintf(u, n, "%.*s%s%s", (int)(at - t), t, ranges[k][1], at + strlen(ranges[k][0]));
+            write_file(tmp("range.gltf"), u, strlen(u));
+            CHECK(il_scene_load(tmp("range.gltf"), NULL, &s, &err) == IL_ERR_FORMAT);
+            CHECK(contains(err.message, ranges[k][2]));
+            printf("%s\n", err.message);
+            free(u);
+        }
+        free(t);
+    }
     /* An accessor reading past the end of its buffer view. */
     t = gltf_text("\"buffers\":[{\"byteLength\":60,\"uri\":"
                   "\"data:application/octet-stream;base64," QUAD_B64 "\"}]");
@@ -290,6 +318,12 @@ static void test_corrupt(void)
     write_file(tmp("head.glb"), head, sizeof head);
     CHECK(il_scene_load(tmp("head.glb"), NULL, &s, &err) == IL_ERR_FORMAT);
     CHECK(contains(err.message, "head.glb: truncated GLB"));
+    /* A GLB whose JSON chunk claims 2 GB (assimp allocated it first). */
+    const unsigned char big[28] = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 28, 0, 0, 0,
+                                   0xff, 0xff, 0xff, 0x7f, 'J', 'S', 'O', 'N', '{', '}', ' ', ' ', ' ', ' ', ' ', ' '};
+    write_file(tmp("big.glb"), big, sizeof big);
+    CHECK(il_scene_load(tmp("big.glb"), NULL, &s, &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "claims 2147483647 bytes"));
 }
 
 int main(void)
