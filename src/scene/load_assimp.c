@@ -791,6 +791,7 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
     il_status cs = has_ext(path, ".obj")                              ? obj_check(path, err)
                    : has_ext(path, ".ply")                            ? il_ply_check(path, err)
                    : has_ext(path, ".gltf") || has_ext(path, ".glb") ? il_gltf_check(path, err)
+                   : has_ext(path, ".off")                            ? il_off_check(path, err)
                                                                       : IL_OK;
     if (cs != IL_OK)
         return cs;

@@ -36,6 +36,11 @@ il_status il_load_assimp_ex(il_scene *scene, const char *path, const il_assimp_o
  * body merely ends early (assimp reports that). */
 il_status il_ply_check(const char *path, il_error *err);
 
+/* An OFF file's vertex and face counts against its size (off_check.c):
+ * IL_ERR_FORMAT naming the file when the rest of it cannot hold them
+ * (assimp would reserve gigabytes first); IL_OK otherwise. */
+il_status il_off_check(const char *path, il_error *err);
+
 /* A glTF 2.0 file's GLB layout, JSON and byte ranges (buffers,
  * bufferViews, accessors) against the spec and the bytes it holds
  * (gltf_check.c): IL_ERR_FORMAT naming the file and what is wrong (assimp

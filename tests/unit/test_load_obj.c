@@ -487,6 +487,28 @@ static void test_ply_counts(void)
     }
 }
 
+/* OFF: a header claiming 10^8 vertices and faces in a 30-byte file is
+ * refused before assimp reserves gigabytes for it; a square, with its
+ * counts on the keyword's line or the next, a comment between, loads. */
+static void test_off_counts(void)
+{
+    il_error err = {0};
+    write_text(tmp("huge.off"), "OFF\n99999999 99999999 0\n0 0 0\n");
+    CHECK(load_err(tmp("huge.off"), &err) == IL_ERR_FORMAT);
+    CHECK(contains(err.message, "huge.off") && contains(err.message, "99999999 vertices") &&
+          contains(err.message, "corrupt or truncated"));
+    const char *ok[] = {"OFF\n# a square\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+                        "OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"};
+    for (int k = 0; k < 2; k++) {
+        write_text(tmp("square.off"), ok[k]);
+        il_scene *s = load_ok(tmp("square.off"));
+        if (s) {
+            CHECK(s->num_meshes == 1 && s->meshes[0].num_triangles == 2);
+            il_scene_release(s);
+        }
+    }
+}
+
 static void test_nan_and_degenerate(void)
 {
     il_error err = {0};
@@ -681,6 +703,7 @@ int main(void)
     test_bunny_ply();
     test_empty_faces();
     test_ply_counts();
+    test_off_counts();
     test_3ds_round_trip();
     test_bad_files();
     test_nan_and_degenerate();
