@@ -111,6 +111,16 @@ int cli_camera_apply(il_scene *scene, const cli_camera_options *o)
 {
     if (!(o->has_pos || o->has_target || o->has_up || o->has_fov))
         return IL_EXIT_OK;
+    /* In the library zero means the default; given here it is a mistake. */
+    if (o->has_up && o->up.x == 0.0f && o->up.y == 0.0f && o->up.z == 0.0f) {
+        cli_error("the camera's up (--camera-up or the camera file's \"up\") is zero: it gives no direction");
+        return IL_EXIT_BAD_INPUT;
+    }
+    if (o->has_fov && !(o->fov > 0.0 && o->fov < 180.0)) {
+        cli_error("the camera's fov %g (--fov or the camera file's \"fov\") must be in (0, 180) degrees",
+                  o->fov);
+        return IL_EXIT_BAD_INPUT;
+    }
     il_camera_desc cam;
     il_scene_get_camera(scene, &cam);
     if (o->has_pos)

@@ -139,6 +139,10 @@ static int parse_options(int argc, char **argv, options *o)
             o->stats = v;
         } else if (!strcmp(a, "--surface")) {
             o->surface = v;
+            if (!v[0]) {
+                cli_error("--surface: an empty name matches no mesh (give a mesh's or material's name)");
+                ok = false;
+            }
         } else if (!strcmp(a, "--facing")) {
             ok = parse_direction(a, v, &o->facing);
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {

@@ -77,6 +77,13 @@ il_status il_envmap_check(const il_image *img, il_env_mapping m, const char *wha
             return il_fail(err, IL_ERR_INVALID, "%s: texel (%zu, %zu) is %s (NaN or infinite)",
                            what, px % w, px / w, isnan(img->rgb[k]) ? "NaN" : "infinite");
         }
+        /* Beyond this the sampling tables' sums would overflow a float. */
+        if (fabsf(img->rgb[k]) > IL_ENVMAP_MAX_RADIANCE) {
+            size_t px = k / 3;
+            return il_fail(err, IL_ERR_INVALID, "%s: texel (%zu, %zu) is %g, more than the %g a map "
+                           "may hold", what, px % w, px / w, (double)img->rgb[k],
+                           (double)IL_ENVMAP_MAX_RADIANCE);
+        }
     }
     return IL_OK;
 }
@@ -371,7 +378,7 @@ il_status il_envmap_init(il_envmap *env, const il_image *img, il_env_mapping m, 
             neg++;
         }
         v *= intensity;
-        if (!isfinite(v)) {
+        if (!(v <= IL_ENVMAP_MAX_RADIANCE)) {
             il_envmap_free(env);
             return il_fail(err, IL_ERR_INVALID,
                            "environment: texel value %g times intensity %g overflows",

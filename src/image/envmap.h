@@ -54,6 +54,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* The largest radiance a map's texel may hold (times its intensity): the
+ * sampling tables sum texels, and a sum beyond 3.4e38 would be infinite. */
+#define IL_ENVMAP_MAX_RADIANCE 1e30f
+
 #include "core/sampling.h"
 #include "core/vec.h"
 #include "illum/illum.h"

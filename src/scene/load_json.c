@@ -691,9 +691,14 @@ static il_status parse_light(jctx *c, const cJSON *l, const char *where)
         (s = get_float_min(c, l, "exponent", where, 0.0f, &d.spot_exponent)) != IL_OK ||
         (s = get_float_min(c, l, "diameter", where, 0.0f, &d.diameter)) != IL_OK)
         return s;
-    if (d.spot_angle > 180.0f) {
+    /* Zero means the default in the library, a mistake in a file. */
+    if (d.spot_angle > 180.0f || (cJSON_GetObjectItemCaseSensitive(l, "angle") && d.spot_angle == 0.0f)) {
         child_key(w, where, "angle");
-        return bad(c, w, "expected degrees in [0, 180]");
+        return bad(c, w, "expected degrees in (0, 180]");
+    }
+    if (cJSON_GetObjectItemCaseSensitive(l, "direction") && v3_is_zero(d.direction)) {
+        child_key(w, where, "direction");
+        return bad(c, w, "a zero vector gives no direction");
     }
     if (d.diameter > 90.0f || (d.diameter > 0.0f && d.type != IL_LIGHT_DIRECTIONAL)) {
         child_key(w, where, "diameter");
@@ -721,6 +726,11 @@ static il_status parse_camera(jctx *c, const cJSON *cam)
         return s;
     if (!has_pos || !has_target)
         return bad(c, "camera", "\"position\" and \"target\" are required");
+    /* In the library zero means the default; written in a file it is a mistake. */
+    if (cJSON_GetObjectItemCaseSensitive(cam, "fov") && !(d.fov_y > 0.0f))
+        return bad(c, "camera.fov", "expected degrees in (0, 180)");
+    if (cJSON_GetObjectItemCaseSensitive(cam, "up") && v3_is_zero(d.up))
+        return bad(c, "camera.up", "a zero vector gives no direction");
     if ((s = il_scene_set_camera(c->scene, &d, c->err)) != IL_OK)
         return il_load_prefix_error(c->err, s, c->path, NULL);
     return IL_OK;

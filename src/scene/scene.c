@@ -308,6 +308,11 @@ il_status il_scene_add_light(il_scene *s, const il_light_desc *d, il_error *err)
     if (!v3_is_finite(d->position) || !v3_is_finite(d->direction) || !vec_finite_nonneg(d->intensity))
         return il_fail(err, IL_ERR_INVALID, "light: position, direction and intensity must be "
                                             "finite (intensity >= 0)");
+    /* Beyond this a light's power (4 pi I, or I times the scene's disk)
+     * overflows a float and the light would silently be left out. */
+    if (v3_max_comp(d->intensity) > 1e30f)
+        return il_fail(err, IL_ERR_INVALID, "light: intensity %g is out of range (at most 1e30)",
+                       (double)v3_max_comp(d->intensity));
     if (!point_in_range(d->position))
         return il_fail(err, IL_ERR_INVALID, "light: position (%g, %g, %g) is out of range "
                        "(coordinates within +-1e15)", (double)d->position.x, (double)d->position.y,

@@ -132,6 +132,35 @@ expect_exit 1 "bake stats into a missing folder" -- "$ILLUM" bake cornell -o k.p
 expect_no_file k.ply "bake stats into a missing folder"
 if ls -a | grep -q '\.tmp-'; then fail "an output check left a temporary file"; fi
 
+# Zero where the library would take a default is a mistake when written
+# (found by fuzzing): a scene's camera fov 0 or up [0,0,0], a spot's angle
+# 0 or direction [0,0,0], --camera-up 0,0,0, a camera file's fov 0.
+base='"materials": {"e": {"emission": 1}}, "meshes": [{"shape": "quad", "size": 1, "material": "e"}]'
+cam='"position": [0, 0, 3], "target": [0, 0, 0]'
+printf '{%s, "camera": {%s, "fov": 0}}' "$base" "$cam" > fov0.json
+printf '{%s, "camera": {%s, "up": [0, 0, 0]}}' "$base" "$cam" > up0.json
+printf '{%s, "lights": [{"type": "spot", "position": [0, 1, 0], "angle": 0}]}' "$base" > angle0.json
+printf '{%s, "lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, 0, 0]}]}' "$base" > dir0.json
+printf '{%s, "lights": [{"type": "point", "position": [0, 1, 0], "intensity": 3e38}]}' "$base" > huge.json
+for f in fov0:camera.fov up0:camera.up angle0:angle dir0:direction huge:"intensity 3e+38 is out of range"; do
+    expect_exit 1 "zero where a default would be: ${f%%:*}" -- "$ILLUM" render "${f%%:*}.json" --spp 1 -o z.png
+    expect_stderr "${f#*:}" "${f%%:*}: the message"
+done
+printf '{%s, "camera": {%s}}' "$base" "$cam" > cam.json
+expect_exit 1 "--camera-up 0,0,0" -- "$ILLUM" render cam.json --camera-up 0,0,0 --spp 1 -o z.png
+expect_stderr "up (--camera-up" "--camera-up 0,0,0: the message"
+printf '{"fov": 0}' > fov0cam.json
+expect_exit 1 "camera file with fov 0" -- "$ILLUM" render cam.json --camera-file fov0cam.json --spp 1 -o z.png
+expect_stderr "must be in (0, 180)" "camera file with fov 0: the message"
+expect_no_file z.png "zero where a default would be"
+expect_exit 1 "illuminance on an empty surface name" -- "$ILLUM" illuminance cornell --surface '' -o z.csv
+expect_no_file z.csv "illuminance on an empty surface name"
+# A map whose texel is finite but so large that the sampling sums overflow:
+# refused naming the file (it was "distribution: weight 3 is inf").
+printf 'PF\n1 1\n-1.0\n\x0c\x13\x9a\x79\x0c\x13\x9a\x79\x0c\x13\x9a\x79' > huge.pfm
+expect_exit 1 "a map of 1e35" -- "$ILLUM" render cornell --env huge.pfm --spp 1 --width 8 --height 8 -o z.png
+expect_stderr "huge.pfm: environment map: texel (0, 0) is 1e+35" "a map of 1e35: the message"
+
 # Corrupt images given to compare.
 printf 'not an image' > bad.png
 printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100 +X 100\n\x02\x02' > bad.hdr
