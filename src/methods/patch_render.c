@@ -12,9 +12,10 @@
  *   reflected (the diffuse part is already in the patch's radiance).
  * - Mirror and glass triangles (no patch) continue the path by sampling
  *   their BSDF as the path tracer does; an emitting one shows its emission.
- * - A path that leaves the scene takes the environment's radiance.  Point,
- *   spot and directional lights are invisible to camera rays (as in pt);
- *   their light is in the patches.
+ * - A path that leaves the scene takes the environment's radiance, and
+ *   after mirror and glass bounces only, a directional light's disc (the
+ *   sun, il_background_radiance; as in pt).  Point and spot lights are
+ *   invisible to camera rays; their light is in the patches.
  *
  * The film loop is the shared camera pass (methods/camera_pass.c), so the
  * film is bit-identical whatever the thread count. */

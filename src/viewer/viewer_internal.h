@@ -67,9 +67,9 @@ typedef struct viewer {
     uint64_t layer_gen;               /* its worker request */
     orbit layer_cam;
     GLuint layer_tex;
-    /* The mesh view's background: the environment's radiance through each
-     * pixel (il_environment_radiance), recomputed when the camera or the
-     * window size changes; bg_w == 0: none (no environment). */
+    /* The mesh view's background: the environment's radiance and the sun's
+     * disc through each pixel (il_background_radiance), recomputed when the
+     * camera or the window size changes; bg_w == 0: none (no environment). */
     GLuint bg_tex;
     int bg_w, bg_h;
     orbit bg_cam;
@@ -163,8 +163,9 @@ bool il_view_layer_done(const viewer *v, bool worker_done, uint64_t worker_gen);
 void il_view_forget_layer(viewer *v);
 
 /* viewer_background.c */
-/* The environment's radiance behind the mesh for the current camera, at
- * the window's size (a quarter of it while moving); false: no environment. */
+/* The background (environment and sun's disc) behind the mesh for the
+ * current camera, at the window's size (a quarter of it while moving);
+ * false: no environment. */
 bool il_view_update_background(viewer *v, int fw, int fh, bool moving);
 void il_view_free_background(viewer *v);
 
