@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <strings.h>
 
 #include "core/atomic_file.h"
@@ -25,6 +26,10 @@ il_status il_image_check_size(uint64_t width, uint64_t height, const char *path,
         return il_fail(err, IL_ERR_FORMAT, "%s: image size %llux%llu exceeds %u per side (corrupt?)",
                        path, (unsigned long long)width, (unsigned long long)height,
                        IL_IMAGE_MAX_SIDE);
+    if (width * height > IL_IMAGE_MAX_PIXELS)
+        return il_fail(err, IL_ERR_FORMAT, "%s: image size %llux%llu exceeds %llu pixels (corrupt?)",
+                       path, (unsigned long long)width, (unsigned long long)height,
+                       (unsigned long long)IL_IMAGE_MAX_PIXELS);
     return IL_OK;
 }
 
@@ -34,9 +39,11 @@ il_status il_image_alloc(il_image *image, uint32_t width, uint32_t height, il_er
         return il_fail(err, IL_ERR_INVALID, "il_image_alloc: image is NULL");
     image->width = image->height = 0;
     image->rgb = NULL;
-    if (width == 0 || height == 0 || width > IL_IMAGE_MAX_SIDE || height > IL_IMAGE_MAX_SIDE)
-        return il_fail(err, IL_ERR_INVALID, "image size %ux%u is out of range (1..%u per side)",
-                       width, height, IL_IMAGE_MAX_SIDE);
+    if (width == 0 || height == 0 || width > IL_IMAGE_MAX_SIDE || height > IL_IMAGE_MAX_SIDE ||
+        (uint64_t)width * height > IL_IMAGE_MAX_PIXELS)
+        return il_fail(err, IL_ERR_INVALID, "image size %ux%u is out of range (1..%u per side, "
+                       "%llu pixels)", width, height, IL_IMAGE_MAX_SIDE,
+                       (unsigned long long)IL_IMAGE_MAX_PIXELS);
     /* 65536^2 * 3 floats fits in size_t on every 64-bit target; the check
      * keeps 32-bit targets honest. */
     size_t n = (size_t)width * height;
@@ -71,6 +78,12 @@ static il_status read_file(const char *path, unsigned char **out_data, size_t *o
     FILE *f = fopen(path, "rb");
     if (!f)
         return il_fail(err, IL_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    /* A device such as /dev/zero never ends: only files and pipes are read. */
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
+        fclose(f);
+        return il_fail(err, IL_ERR_IO, "%s: not a file", path);
+    }
     size_t cap = 1 << 16, size = 0;
     unsigned char *data = il_malloc(cap, err);
     if (!data) {

@@ -21,6 +21,9 @@
 /* Largest width or height any reader accepts; a header claiming more is
  * treated as corrupt. */
 #define IL_IMAGE_MAX_SIDE 65536u
+/* ... and at most this many pixels (16384 x 16384, 3 GB of float RGB): a
+ * corrupt header of 65536 x 65536 would ask for 48 GB. */
+#define IL_IMAGE_MAX_PIXELS (16384ull * 16384ull)
 
 /* Checks dimensions read from a file: both in 1..IL_IMAGE_MAX_SIDE.  Reports
  * IL_ERR_FORMAT naming `path` otherwise. */

@@ -89,6 +89,12 @@ il_status il_load_read_file(const char *path, char **out, size_t *size, il_error
     if (!f)
         return il_fail(err, IL_ERR_IO, "%s: %s", path,
                        errno == ENOENT ? "no such file" : strerror(errno));
+    /* A device such as /dev/zero never ends: only files and pipes are read. */
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
+        fclose(f);
+        return il_fail(err, IL_ERR_IO, "%s: not a file", path);
+    }
     char *buf = NULL;
     size_t len = 0, cap = 0;
     for (;;) {

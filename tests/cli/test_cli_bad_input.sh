@@ -161,6 +161,22 @@ printf 'PF\n1 1\n-1.0\n\x0c\x13\x9a\x79\x0c\x13\x9a\x79\x0c\x13\x9a\x79' > huge.
 expect_exit 1 "a map of 1e35" -- "$ILLUM" render cornell --env huge.pfm --spp 1 --width 8 --height 8 -o z.png
 expect_stderr "huge.pfm: environment map: texel (0, 0) is 1e+35" "a map of 1e35: the message"
 
+# A header asking for 20000 x 20000 pixels (4.8 GB) in a tiny file, and a
+# device that never ends: refused before anything is allocated or read.
+printf 'PF\n20000 20000\n-1.0\n\x00\x00\x00\x00' > vast.pfm
+expect_exit 1 "a 20000 x 20000 image" -- "$ILLUM" compare vast.pfm vast.pfm
+expect_stderr "exceeds 268435456 pixels" "a 20000 x 20000 image: the message"
+if [ -c /dev/zero ]; then
+    expect_exit 1 "a map read from /dev/zero" -- "$ILLUM" render cornell --env /dev/zero --spp 1 -o z.png
+    expect_stderr "/dev/zero: not a file" "a map read from /dev/zero: the message"
+    printf '{"materials": {"t": {"diffuse": 0.5, "texture": "/dev/zero"}}, "meshes": [{"shape": "quad", "size": 1, "material": "t"}], "lights": [{"type": "point", "position": [0, 1, 0]}]}' > devzero.json
+    # A texture that cannot be read is a warning, and the material's colour
+    # (scene-format.md); it used to read /dev/zero for ever.
+    expect_exit 0 "a texture read from /dev/zero" -- "$ILLUM" render devzero.json --spp 1 --width 8 \
+        --height 8 -o devzero.png
+    expect_stderr "/dev/zero not loaded (/dev/zero: not a file)" "a texture read from /dev/zero: the warning"
+fi
+
 # Corrupt images given to compare.
 printf 'not an image' > bad.png
 printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100 +X 100\n\x02\x02' > bad.hdr
