@@ -1,3 +1,4 @@
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
 
 #include "core/atomic_file.h"
@@ -173,6 +174,25 @@ bool cli_write_text_atomic(const char *path, const char *text)
     return st == IL_OK;
 }
 
+/* The path with its folder resolved (realpath), for comparing outputs:
+ * "a.png" and "./a.png" are one file.  The folder exists once
+ * il_atomic_check has passed.  False when it cannot be resolved. */
+static bool resolved(const char *path, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    char dir[PATH_MAX];
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    char real[PATH_MAX];
+    if (!realpath(dir, real))
+        return false;
+    return snprintf(out, size, "%s/%s", real, slash ? slash + 1 : path) < (int)size;
+}
+
 int cli_check_outputs(const char *const *paths, int n)
 {
     for (int i = 0; i < n; i++) {
@@ -182,6 +202,17 @@ int cli_check_outputs(const char *const *paths, int n)
             return cli_exit_for(err.status);
         }
     }
+    /* Two outputs in one file: the later would replace the earlier. */
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n && paths[i]; j++) {
+            char a[2 * PATH_MAX], b[2 * PATH_MAX];
+            if (paths[j] && (!strcmp(paths[i], paths[j]) ||
+                             (resolved(paths[i], a, sizeof a) && resolved(paths[j], b, sizeof b) &&
+                              !strcmp(a, b)))) {
+                cli_error("%s and %s name the same file: give each output its own", paths[i], paths[j]);
+                return IL_EXIT_BAD_INPUT;
+            }
+        }
     return IL_EXIT_OK;
 }
 

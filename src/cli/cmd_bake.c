@@ -164,8 +164,17 @@ int cmd_bake(int argc, char **argv)
     if (rc != IL_EXIT_OK)
         return rc;
 
-    const char *files[] = {o.output, o.stats};
-    if ((rc = cli_check_outputs(files, 2)) != IL_EXIT_OK)
+    /* A .gltf writes its buffer to NAME.bin beside it (export_assimp.c). */
+    char bin[4096] = "";
+    const char *dot = strrchr(o.output, '.');
+    if (dot && !strcasecmp(dot, ".gltf"))
+        snprintf(bin, sizeof bin, "%.*s.bin", (int)(dot - o.output), o.output);
+    if (bin[0] && o.stats && !strcmp(bin, o.stats)) {
+        cli_error("%s: %s writes its buffer there; give --stats another name", o.stats, o.output);
+        return IL_EXIT_BAD_INPUT;
+    }
+    const char *files[] = {o.output, o.stats, bin[0] ? bin : NULL};
+    if ((rc = cli_check_outputs(files, 3)) != IL_EXIT_OK)
         return rc;
     il_scene *scene = NULL;
     if ((rc = cli_load_scene_env(o.scene, o.run.quiet, &o.env, &scene)) != IL_EXIT_OK)

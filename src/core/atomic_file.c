@@ -72,6 +72,11 @@ il_status il_atomic_check(const char *path, il_error *err)
     struct stat sb;
     if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return il_fail(err, IL_ERR_IO, "%s: is a folder, not a file", path);
+    /* The output replaces the file by renaming over it, which would replace
+     * a device such as /dev/null, or a pipe, by a plain file. */
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return il_fail(err, IL_ERR_IO, "%s: is a device or a pipe, not a file (outputs are written as "
+                       "files)", path);
     il_atomic_file af;
     il_status st = il_atomic_open(&af, path, err);
     if (st != IL_OK)

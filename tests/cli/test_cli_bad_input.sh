@@ -161,6 +161,27 @@ printf 'PF\n1 1\n-1.0\n\x0c\x13\x9a\x79\x0c\x13\x9a\x79\x0c\x13\x9a\x79' > huge.
 expect_exit 1 "a map of 1e35" -- "$ILLUM" render cornell --env huge.pfm --spp 1 --width 8 --height 8 -o z.png
 expect_stderr "huge.pfm: environment map: texel (0, 0) is 1e+35" "a map of 1e35: the message"
 
+# Two outputs in one file, and a device as an output (found by fuzzing: the
+# later output replaced the earlier with exit 0, and the temporary file
+# was renamed over /dev/null, which root may do).
+expect_exit 1 "image and stats in one file" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o same.png --stats same.png
+expect_stderr "same.png and same.png name the same file" "image and stats in one file"
+expect_no_file same.png "image and stats in one file"
+expect_exit 1 "one output named twice" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o twice.png -o ./twice.png
+expect_stderr "name the same file" "one output named twice"
+if [ -c /dev/null ]; then
+    expect_exit 1 "stats into /dev/null" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -o dn.png --stats /dev/null
+    expect_stderr "/dev/null: is a device or a pipe" "stats into /dev/null"
+    checks=$((checks + 1))
+    [ -c /dev/null ] || fail "/dev/null is no longer a device"
+fi
+expect_exit 1 "bake stats onto the glTF's buffer" -- "$ILLUM" bake cornell -o bk.gltf --stats bk.bin
+expect_stderr "bk.gltf writes its buffer there" "bake stats onto the glTF's buffer"
+mkdir -p bkdir.bin
+expect_exit 1 "the glTF's buffer is a folder" -- "$ILLUM" bake cornell -o bkdir.gltf
+expect_stderr "bkdir.bin: is a folder" "the glTF's buffer is a folder"
+expect_no_file bkdir.gltf "the glTF's buffer is a folder"
+
 # A header asking for 20000 x 20000 pixels (4.8 GB) in a tiny file, and a
 # device that never ends: refused before anything is allocated or read.
 printf 'PF\n20000 20000\n-1.0\n\x00\x00\x00\x00' > vast.pfm
