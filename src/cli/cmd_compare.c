@@ -1,4 +1,5 @@
 /* `illum compare A B`: the error metrics every validation test and benchmark uses. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -72,11 +73,19 @@ int cmd_compare(int argc, char **argv)
         cli_error("%s", err.message);
         return cli_exit_for(st);
     }
-    if (json)
-        printf("{\"rmse\": %.9g, \"rel_mse\": %.9g, \"mean_luminance_a\": %.9g, "
-               "\"mean_luminance_b\": %.9g, \"max_abs_error\": %.9g}\n",
-               r.rmse, r.rel_mse, r.mean_lum_a, r.mean_lum_b, r.max_abs_error);
-    else
+    if (json) {
+        /* JSON has no NaN or infinity: such a figure is null. */
+        const char *keys[] = {"rmse", "rel_mse", "mean_luminance_a", "mean_luminance_b", "max_abs_error"};
+        const double vals[] = {r.rmse, r.rel_mse, r.mean_lum_a, r.mean_lum_b, r.max_abs_error};
+        for (int k = 0; k < 5; k++) {
+            printf("%s\"%s\": ", k ? ", " : "{", keys[k]);
+            if (isfinite(vals[k]))
+                printf("%.9g", vals[k]);
+            else
+                fputs("null", stdout);
+        }
+        puts("}");
+    } else
         printf("rmse            %.6g\nrel_mse         %.6g\nmean_luminance  %.6g  %.6g\n"
                "max_abs_error   %.6g\n",
                r.rmse, r.rel_mse, r.mean_lum_a, r.mean_lum_b, r.max_abs_error);

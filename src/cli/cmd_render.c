@@ -349,9 +349,9 @@ static int apply_scene_settings(const il_scene *scene, render_options *o)
     int rc = cli_run_apply_settings(o->scene, &rs, o->has_method, &o->run, &o->desc);
     if (rc != IL_EXIT_OK)
         return rc;
-    if (o->width == 0 && rs.width <= 16384)
+    if (o->width == 0)
         o->width = rs.width;
-    if (o->height == 0 && rs.height <= 16384)
+    if (o->height == 0)
         o->height = rs.height;
     if (o->desc.spp == 0 && o->desc.time_limit == 0.0) {
         o->desc.spp = rs.spp;

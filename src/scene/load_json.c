@@ -962,16 +962,17 @@ static il_status parse_render(jctx *c, const cJSON *r)
     double w = 0, h = 0, spp = 0, depth = 0, seed = 0, time = 0;
     const char *method = NULL;
     bool has_time;
-    if ((s = get_integer(c, r, "width", "render", 1, 65536, &w)) != IL_OK ||
-        (s = get_integer(c, r, "height", "render", 1, 65536, &h)) != IL_OK ||
-        (s = get_integer(c, r, "spp", "render", 1, 4294967295.0, &spp)) != IL_OK ||
-        (s = get_integer(c, r, "max_depth", "render", 1, 1000000, &depth)) != IL_OK ||
+    /* The ranges of illum render's --width, --height, --spp and --max-depth. */
+    if ((s = get_integer(c, r, "width", "render", 1, 16384, &w)) != IL_OK ||
+        (s = get_integer(c, r, "height", "render", 1, 16384, &h)) != IL_OK ||
+        (s = get_integer(c, r, "spp", "render", 1, 16777216.0, &spp)) != IL_OK ||
+        (s = get_integer(c, r, "max_depth", "render", 1, 1024, &depth)) != IL_OK ||
         (s = get_integer(c, r, "seed", "render", 0, 9007199254740992.0, &seed)) != IL_OK ||
         (s = get_number(c, r, "time", "render", &time, &has_time)) != IL_OK ||
         (s = get_string(c, r, "method", "render", &method)) != IL_OK)
         return s;
-    if (has_time && !(time > 0))
-        return bad(c, "render.time", "expected seconds > 0");
+    if (has_time && !(time > 0 && time <= 365.0 * 24.0 * 3600.0))
+        return bad(c, "render.time", "expected seconds > 0, at most a year");
     if (method && strlen(method) >= sizeof o->method)
         return bad(c, "render.method", "name too long");
     o->width = (uint32_t)w;

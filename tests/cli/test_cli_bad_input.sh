@@ -182,6 +182,19 @@ expect_exit 1 "the glTF's buffer is a folder" -- "$ILLUM" bake cornell -o bkdir.
 expect_stderr "bkdir.bin: is a folder" "the glTF's buffer is a folder"
 expect_no_file bkdir.gltf "the glTF's buffer is a folder"
 
+# compare --json of an image holding NaN: null, not the invalid "nan".
+printf 'PF\n1 1\n-1.0\n\x00\x00\xc0\x7f\x00\x00\xc0\x7f\x00\x00\xc0\x7f' > nan.pfm
+printf 'PF\n1 1\n-1.0\n\x00\x00\x00\x3f\x00\x00\x00\x3f\x00\x00\x00\x3f' > half.pfm
+expect_exit 0 "compare --json with NaN" -- "$ILLUM" compare nan.pfm half.pfm --json
+expect_stdout '"rmse": null' "compare --json with NaN"
+checks=$((checks + 1))
+grep -qiw -e nan -e inf out.txt && fail "compare --json printed nan or inf"
+# A scene's render size beyond --width's 16384 was silently ignored (the
+# image came out 512 x 512): refused, naming the key.
+printf '{%s, "render": {"width": 20000}}' "$base" > wide.json
+expect_exit 1 "render.width 20000" -- "$ILLUM" render wide.json --spp 1 -o z.png
+expect_stderr "render.width" "render.width 20000: the message"
+
 # A header asking for 20000 x 20000 pixels (4.8 GB) in a tiny file, and a
 # device that never ends: refused before anything is allocated or read.
 printf 'PF\n20000 20000\n-1.0\n\x00\x00\x00\x00' > vast.pfm
