@@ -2,10 +2,12 @@
  * points of a file. */
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "cli/cli.h"
 
@@ -196,7 +198,7 @@ static int parse_numbers(char *line, double v[6], bool *junk)
         char *end;
         errno = 0;
         double x = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(x) || n == 6) {
+        if (end == p || errno == ERANGE || !(fabs(x) <= FLT_MAX) || n == 6) {
             *junk = true;
             return n;
         }
@@ -224,16 +226,21 @@ int cli_read_sensors(const char *path, cli_sensor_grid *g)
         char *s = line;
         while (isspace((unsigned char)*s))
             s++;
-        if (!*s || *s == '#')
+        char *hash = strchr(s, '#');
+        if (hash)
+            *hash = '\0';   /* a comment, whole-line or after the numbers */
+        if (!*s)
             continue;
-        if (no == 1 && isalpha((unsigned char)*s))
-            continue; /* a CSV header such as x,y,z,nx,ny,nz */
+        /* A CSV header such as x,y,z,nx,ny,nz (a word, but not nan or inf,
+         * which are bad numbers). */
+        if (no == 1 && isalpha((unsigned char)*s) && strncasecmp(s, "nan", 3) && strncasecmp(s, "inf", 3))
+            continue;
         double v[6];
         bool junk;
         int n = parse_numbers(s, v, &junk);
         if (junk || (n != 3 && n != 6)) {
-            cli_error("%s:%lu: expected 'x y z' or 'x y z nx ny nz' (finite numbers, "
-                      "separated by spaces or commas)", path, no);
+            cli_error("%s:%lu: expected 'x y z' or 'x y z nx ny nz' (finite numbers within "
+                      "+-3.4e38, separated by spaces or commas)", path, no);
             rc = IL_EXIT_BAD_INPUT;
             break;
         }

@@ -54,12 +54,23 @@ expect_stderr "warning: 64 of 64 sensors read 0 lx" "facing down"
 
 # Sensors from a file: a header, a comment, spaces and commas; 1 m aside
 # the reading is 683 * 10 * 2 / 5^1.5 = 1221.79 lx.
-printf 'x,y,z,nx,ny,nz\n# under the lamp\n0 0 0\n1,0,0, 0,2,0\n\n' > points.csv
+printf 'x,y,z,nx,ny,nz\n# under the lamp\n0 0 0 # its centre\n1,0,0, 0,2,0\n\n' > points.csv
 expect_exit 0 "points" -- "$ILLUM" illuminance lamp.json --points points.csv --samples 16 -o points.out.csv
 expect_stdout "2 sensors from points.csv" "points"
 checks=$((checks + 1))
 awk -F, 'NR == 3 { d = $7 - 1221.79; exit !(d < 0.01 && d > -0.01 && $5 == 1) }' points.out.csv ||
     fail "points.out.csv: $(sed -n 3p points.out.csv), expected 1221.79 lx and a unit normal"
+
+# A first line of bad numbers is not a header (it was skipped, and its
+# sensor lost with exit 0); a coordinate beyond a float is refused with its
+# line.
+printf 'nan 0 0\n0 0 0\n' > nanfirst.csv
+expect_exit 1 "points: nan on the first line" -- "$ILLUM" illuminance lamp.json --points nanfirst.csv -o bad.csv
+expect_stderr "nanfirst.csv:1: expected" "points: nan on the first line"
+printf '0 0 0\n1e39 0 0\n' > huge.csv
+expect_exit 1 "points: 1e39" -- "$ILLUM" illuminance lamp.json --points huge.csv -o bad.csv
+expect_stderr "huge.csv:2: expected" "points: 1e39"
+expect_no_file bad.csv "points: bad numbers"
 
 # The same readings with one thread and two (the Cornell box: noisy paths).
 expect_exit 0 "1 thread" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 64 --threads 1 -q -o t1.csv
