@@ -1037,6 +1037,46 @@ static il_status parse_scene(jctx *c, const cJSON *root)
     return IL_OK;
 }
 
+static int compare_keys(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* A key that appears twice in object o itself, or NULL: its keys sorted
+ * (an object of materials may hold 10^5). */
+static const char *repeated_key(const cJSON *o)
+{
+    size_t n = 0;
+    for (const cJSON *a = o->child; a; a = a->next)
+        n += a->string != NULL;
+    if (n < 2)
+        return NULL;
+    const char **keys = malloc(n * sizeof *keys);
+    if (!keys)
+        return NULL;   /* no memory to check: the scene is read as cJSON reads it */
+    n = 0;
+    for (const cJSON *a = o->child; a; a = a->next)
+        if (a->string)
+            keys[n++] = a->string;
+    qsort(keys, n, sizeof *keys, compare_keys);
+    const char *dup = NULL;
+    for (size_t i = 1; i < n && !dup; i++)
+        if (!strcmp(keys[i - 1], keys[i]))
+            dup = keys[i];
+    free(keys);
+    return dup;
+}
+
+/* The first key found twice in one object anywhere in j (cJSON keeps both,
+ * and every lookup finds the first), or NULL. */
+static const char *duplicate_key(const cJSON *j)
+{
+    const char *d = cJSON_IsObject(j) ? repeated_key(j) : NULL;
+    for (const cJSON *a = j ? j->child : NULL; a && !d; a = a->next)
+        d = duplicate_key(a);
+    return d;
+}
+
 il_status il_load_json(il_scene *scene, const char *path, il_error *err)
 {
     il_error local;
@@ -1054,6 +1094,23 @@ il_status il_load_json(il_scene *scene, const char *path, il_error *err)
         line_col(text, end ? end : text, &line, &col);
         s = il_fail(err, IL_ERR_FORMAT, "%s: invalid JSON near line %d, column %d", path, line,
                     col);
+        free(text);
+        return s;
+    }
+    /* What follows the scene's object must be blank: text after it is a
+     * mistake (two objects, or a cut and paste) that would be ignored. */
+    const char *rest = end;
+    while (rest && rest < text + size && strchr(" \t\r\n", *rest) && *rest)
+        rest++;
+    const char *dup = rest && rest < text + size ? NULL : duplicate_key(root);
+    if ((rest && rest < text + size) || dup) {
+        int line, col;
+        line_col(text, rest && rest < text + size ? rest : text, &line, &col);
+        s = dup ? il_fail(err, IL_ERR_FORMAT, "%s: the key \"%s\" appears twice in one object (only "
+                          "one would be read)", path, dup)
+                : il_fail(err, IL_ERR_FORMAT, "%s: text after the scene's JSON object, near line %d, "
+                          "column %d", path, line, col);
+        cJSON_Delete(root);
         free(text);
         return s;
     }

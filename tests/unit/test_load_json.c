@@ -370,6 +370,18 @@ static void test_errors(void)
         {"{\"meshes\":[{\"shape\":\"quad\"}],\n  \"lights\": [}", IL_ERR_FORMAT,
          "bad.json: invalid JSON near line 2"},
         {"", IL_ERR_FORMAT, "bad.json: invalid JSON"},
+        /* Found by fuzzing: text after the object, and a key given twice
+         * (cJSON reads the first), were silently ignored. */
+        {"{\"meshes\":[{\"shape\":\"quad\"}]}\n{\"meshes\":[]}", IL_ERR_FORMAT,
+         "bad.json: text after the scene's JSON object, near line 2, column 1"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"meshes\":[]}", IL_ERR_FORMAT,
+         "bad.json: the key \"meshes\" appears twice in one object"},
+        {"{\"meshes\":[{\"shape\":\"quad\",\"size\":1,\"size\":2}]}", IL_ERR_FORMAT,
+         "bad.json: the key \"size\" appears twice in one object"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"render\":{\"width\":20000}}", IL_ERR_FORMAT,
+         "bad.json: render.width"},
+        {"{\"meshes\":[{\"shape\":\"quad\"}],\"camera\":{\"position\":[0,0,3],\"target\":[0,0,0],\"fov\":0}}",
+         IL_ERR_FORMAT, "bad.json: camera.fov: expected degrees in (0, 180)"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"cloudy\"}}",
          IL_ERR_FORMAT, "bad.json: environment.sky: expected \"overcast\", \"clear\" or \"cie:1\" to \"cie:15\""},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"environment\":{\"sky\":\"clear\"}}",
