@@ -390,6 +390,7 @@ typedef struct cli_camera_options {
     bool has_pos, has_target, has_up, has_fov;
     il_vec3 pos, target, up;
     double fov;                      /* vertical, degrees */
+    bool quiet;                      /* the file's warnings are not printed */
 } cli_camera_options;
 
 /* As cli_radiosity_option, for the five options above. */

@@ -76,11 +76,28 @@ int cli_camera_read_file(cli_camera_options *o)
     size_t n = fread(buf, 1, sizeof buf - 1, f);
     fclose(f);
     buf[n] = '\0';
-    cJSON *root = cJSON_Parse(buf);
-    if (!root || !cJSON_IsObject(root)) {
-        cli_error("%s: not a JSON object", o->file);
+    /* One object and nothing after it (cJSON would ignore the rest). */
+    cJSON *root = cJSON_ParseWithOpts(buf, NULL, true);
+    if (!root || !cJSON_IsObject(root) || !root->child) {
+        cli_error("%s: not a JSON object with a camera's keys (\"position\", \"target\", \"up\", "
+                  "\"fov\")", o->file);
         cJSON_Delete(root);
         return IL_EXIT_BAD_INPUT;
+    }
+    for (const cJSON *k = root->child; k; k = k->next) {
+        static const char *const known[] = {"position", "target", "up", "fov"};
+        bool ok = false;
+        for (int i = 0; i < 4; i++)
+            ok |= k->string && !strcmp(k->string, known[i]);
+        for (const cJSON *l = k->next; l && ok; l = l->next)
+            if (l->string && !strcmp(l->string, k->string)) {
+                cli_error("%s: the key \"%s\" appears twice", o->file, k->string);
+                cJSON_Delete(root);
+                return IL_EXIT_BAD_INPUT;
+            }
+        if (!ok && !o->quiet)
+            cli_error("warning: %s: unknown key \"%s\" ignored (a camera file has \"position\", "
+                      "\"target\", \"up\" and \"fov\")", o->file, k->string ? k->string : "");
     }
     cli_camera_options file = {0};
     bool ok = read_vec3(root, "position", &file.pos, &file.has_pos, o->file) &&

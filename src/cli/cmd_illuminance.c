@@ -431,6 +431,7 @@ int cmd_illuminance(int argc, char **argv)
     for (int k = 0; k < o.num_outputs; k++)
         files[k] = o.outputs[k];
     files[o.num_outputs] = o.stats;
+    o.camera.quiet = o.run_opts.quiet;
     if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK ||
         (rc = cli_check_outputs(files, o.num_outputs + 1)) != IL_EXIT_OK)
         return rc;

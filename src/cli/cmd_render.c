@@ -421,6 +421,7 @@ int cmd_render(int argc, char **argv)
         cli_error("--checkpoint-every and --checkpoint work under mpirun (mpirun -np 1 for one process)");
         return IL_EXIT_USAGE;
     }
+    o.camera.quiet = o.run.quiet;
     if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK)
         return rc;
     char default_out[512];

@@ -154,6 +154,7 @@ int cmd_view(int argc, char **argv)
         return IL_EXIT_OK;
     if (rc != IL_EXIT_OK)
         return rc;
+    o.camera.quiet = o.run.quiet;
     if ((rc = cli_camera_read_file(&o.camera)) != IL_EXIT_OK)
         return rc;
 #ifndef IL_HAVE_VIEWER

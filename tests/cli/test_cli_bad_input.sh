@@ -101,7 +101,20 @@ expect_file g.png "one NaN triangle among good ones"
 expect_exit 1 "missing camera file" -- "$ILLUM" render cornell --camera-file nope.json -o h.png
 echo '{"position": [1, 2]}' > badcam.json
 expect_exit 1 "bad camera file" -- "$ILLUM" render cornell --camera-file badcam.json -o h.png
+# Found by fuzzing: a key given twice (the first was read), text after the
+# object, and an empty object were taken without a word.
+echo '{"fov": 40, "fov": 0}' > twicecam.json
+expect_exit 1 "camera file: a key twice" -- "$ILLUM" render cornell --camera-file twicecam.json -o h.png
+expect_stderr 'the key "fov" appears twice' "camera file: a key twice"
+echo '{"fov": 40} junk' > junkcam.json
+expect_exit 1 "camera file: text after it" -- "$ILLUM" render cornell --camera-file junkcam.json -o h.png
+echo '{}' > emptycam.json
+expect_exit 1 "camera file: no key" -- "$ILLUM" render cornell --camera-file emptycam.json -o h.png
 expect_no_file h.png "camera files"
+echo '{"fov": 30, "zoom": 2}' > zoomcam.json
+expect_exit 0 "camera file: an unknown key" -- "$ILLUM" render cornell --camera-file zoomcam.json --width 8 \
+    --height 8 --spp 1 -o zoom.png
+expect_stderr 'unknown key "zoom" ignored' "camera file: an unknown key"
 
 # Coordinates beyond +-1e15: Embree aborts the program on a ray from there
 # (the photon mapper's emission rays did), so the scene is refused first.
