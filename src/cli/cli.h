@@ -61,6 +61,8 @@ double cli_now_seconds(void);
 
 /* Writes text to path through a temporary file and a rename. */
 bool cli_write_text_atomic(const char *path, const char *text);
+/* The folder of path into dir: "." for a bare name, "/" for one in the root. */
+void cli_folder_of(const char *path, char *dir, size_t size);
 
 /* Before a command spends time: each non-NULL path of `paths` can be written
  * (il_atomic_check).  Prints the first problem and returns its exit status. */

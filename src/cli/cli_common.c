@@ -174,6 +174,17 @@ bool cli_write_text_atomic(const char *path, const char *text)
     return st == IL_OK;
 }
 
+void cli_folder_of(const char *path, char *dir, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        snprintf(dir, size, ".");
+    else if (slash == path)
+        snprintf(dir, size, "/");
+    else
+        snprintf(dir, size, "%.*s", (int)(slash - path), path);
+}
+
 /* The path with its folder resolved (realpath), for comparing outputs:
  * "a.png" and "./a.png" are one file.  The folder exists once
  * il_atomic_check has passed.  False when it cannot be resolved. */
@@ -181,12 +192,7 @@ static bool resolved(const char *path, char *out, size_t size)
 {
     const char *slash = strrchr(path, '/');
     char dir[PATH_MAX];
-    if (!slash)
-        snprintf(dir, sizeof dir, ".");
-    else if (slash == path)
-        snprintf(dir, sizeof dir, "/");
-    else
-        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    cli_folder_of(path, dir, sizeof dir);
     char real[PATH_MAX];
     if (!realpath(dir, real))
         return false;
