@@ -542,6 +542,11 @@ static il_status shape_mesh(jctx *c, const cJSON *mesh, const char *where, const
         il_vec3 size = v3s(1.0f);
         const cJSON *v = cJSON_GetObjectItemCaseSensitive(mesh, "size");
         child_key(w, where, "size");
+        if (cJSON_GetObjectItemCaseSensitive(mesh, "radius") || cJSON_GetObjectItemCaseSensitive(mesh, "segments"))
+            il_scene_warn(c->scene, "%s: %s: \"radius\" and \"segments\" are a sphere's, ignored for a %s",
+                          c->path, where, shape);
+        if (v && quad && cJSON_IsArray(v) && cJSON_GetArraySize(v) != 2)
+            return bad(c, w, "expected a number or [sx,sz]");
         if (v && quad && cJSON_IsArray(v) && cJSON_GetArraySize(v) == 2) {
             const cJSON *a = cJSON_GetArrayItem(v, 0), *b = cJSON_GetArrayItem(v, 1);
             if (!cJSON_IsNumber(a) || !cJSON_IsNumber(b))
@@ -556,6 +561,9 @@ static il_status shape_mesh(jctx *c, const cJSON *mesh, const char *where, const
                     : il_shape_box(size.x, size.y, size.z, out, c->err);
     }
     if (strcmp(shape, "sphere") == 0) {
+        if (cJSON_GetObjectItemCaseSensitive(mesh, "size"))
+            il_scene_warn(c->scene, "%s: %s: \"size\" is a quad's or a box's, ignored for a sphere "
+                          "(give \"radius\")", c->path, where);
         float radius = 1.0f;
         double segments = 32;
         if ((s = get_float_min(c, mesh, "radius", where, 0.0f, &radius)) != IL_OK ||

@@ -378,6 +378,8 @@ static void test_errors(void)
          "bad.json: the key \"meshes\" appears twice in one object"},
         {"{\"meshes\":[{\"shape\":\"quad\",\"size\":1,\"size\":2}]}", IL_ERR_FORMAT,
          "bad.json: the key \"size\" appears twice in one object"},
+        {"{\"meshes\":[{\"shape\":\"quad\",\"size\":[1,2,3]}]}", IL_ERR_FORMAT,
+         "bad.json: meshes[0].size: expected a number or [sx,sz]"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"render\":{\"width\":20000}}", IL_ERR_FORMAT,
          "bad.json: render.width"},
         {"{\"meshes\":[{\"shape\":\"quad\"}],\"camera\":{\"position\":[0,0,3],\"target\":[0,0,0],\"fov\":0}}",
@@ -434,6 +436,19 @@ static void test_errors(void)
         }
         il_scene_release(s);
     }
+}
+
+/* A key of another shape (found by fuzzing: silently ignored). */
+static void check_shape_keys(void)
+{
+    il_scene *s = load_json_ok("shapes.json", "{\"meshes\": [{\"shape\": \"quad\", \"radius\": 2},"
+                               " {\"shape\": \"sphere\", \"size\": 2}]}");
+    if (!s)
+        return;
+    CHECK(s->num_warnings == 2);
+    CHECK(any_warning_contains(s, "meshes[0]: \"radius\" and \"segments\" are a sphere's, ignored for a quad"));
+    CHECK(any_warning_contains(s, "meshes[1]: \"size\" is a quad's or a box's, ignored for a sphere"));
+    il_scene_release(s);
 }
 
 static void test_warnings_and_fallbacks(void)
@@ -577,6 +592,7 @@ static void test_sky(void)
 
 int main(void)
 {
+    check_shape_keys();
     test_full_scene();
     test_file_with_transform_and_overrides();
     test_rotations();
