@@ -175,7 +175,8 @@ il_status il_sky_cie(const il_sky_desc *desc, il_image *out, il_error *err)
                        desc->sun_altitude);
     if (!isfinite(desc->sun_azimuth) || !isfinite(desc->north) || fabs(desc->sun_azimuth) > 1e6 ||
         fabs(desc->north) > 1e6)
-        return il_fail(err, IL_ERR_INVALID, "sky: the sun's azimuth and north must be finite numbers of degrees");
+        return il_fail(err, IL_ERR_INVALID, "sky: the sun's azimuth and north must be finite numbers of degrees "
+                       "within +-1e6");
     if (!(desc->sun_normal_lux >= 0.0) || !isfinite(desc->sun_normal_lux))
         return il_fail(err, IL_ERR_INVALID, "sky: the sun's illuminance must be 0 or a positive number of lux");
     if (!(desc->sun_diameter <= 90.0) || !isfinite(desc->sun_diameter))
