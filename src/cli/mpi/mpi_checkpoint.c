@@ -9,6 +9,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -155,6 +156,17 @@ il_status cli_checkpoint_read(const char *path, cli_checkpoint *ck, bool *found,
     }
     memcpy(ck->done, buf + HEADER_BYTES, ck->tiles);
     memcpy(ck->film, buf + HEADER_BYTES + ck->tiles, film_bytes(ck));
+    /* The checksum finds damage, not a file made to pass it: what a render
+     * could not have written is refused too (done 0 or 1; sums finite, the
+     * weights not negative). */
+    for (uint32_t t = 0; t < ck->tiles && st == IL_OK; t++)
+        if (ck->done[t] > 1)
+            st = il_fail(err, IL_ERR_INVALID, "checkpoint %s: tile %u is marked %u (0 or 1 expected); "
+                         "delete it to render from the start", path, t, ck->done[t]);
+    for (size_t k = 0; k < (size_t)ck->width * ck->height * 4 && st == IL_OK; k++)
+        if (!isfinite(ck->film[k]) || (k % 4 == 3 && ck->film[k] < 0.0))
+            st = il_fail(err, IL_ERR_INVALID, "checkpoint %s: pixel %zu holds %g, which no render "
+                         "writes; delete it to render from the start", path, k / 4, ck->film[k]);
 done:
     free(buf);
     return st;

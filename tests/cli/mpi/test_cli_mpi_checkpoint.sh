@@ -114,6 +114,31 @@ expect_exit 1 "--write-every with photon" -- "${MPI[@]}" -np 2 "$ILLUM" render c
     --method photon --width 32 --height 32 -q -o p.pfm --write-every 1
 expect_stderr "--write-every under mpirun: --method pt only" "--write-every with photon"
 
+# A checkpoint made to pass the checksum but holding what no render writes
+# (found by fuzzing: a NaN film was trusted, and its image came out as
+# 65504s): a NaN in the first pixel, the FNV-1a sum written anew (bash's
+# 64-bit arithmetic wraps as the C code's does).
+expect_exit 3 "checkpoint for the NaN test" -- "${MPI[@]}" -np 2 "${fail_error[@]}" "$ILLUM" \
+    render "${args[@]}" -q -o nan.pfm --checkpoint-every 0.001 --checkpoint cknan.bin
+if [ -s cknan.bin ]; then
+    size=$(stat -c %s cknan.bin)
+    # The header (40 bytes), 18 done bytes, then the film: its first double NaN.
+    printf '\x00\x00\x00\x00\x00\x00\xf8\x7f' | dd of=cknan.bin bs=1 seek=58 conv=notrunc 2>/dev/null
+    h=$((0xcbf29ce484222325))
+    for b in $(head -c $((size - 8)) cknan.bin | od -An -v -tu1); do
+        h=$(( (h ^ b) * 0x100000001b3 ))
+    done
+    sum=""
+    for k in 0 1 2 3 4 5 6 7; do sum="$sum\\x$(printf '%02x' $(( (h >> (8 * k)) & 255 )))"; done
+    printf "$sum" | dd of=cknan.bin bs=1 seek=$((size - 8)) conv=notrunc 2>/dev/null
+    expect_exit 1 "a checkpoint holding NaN" -- "${MPI[@]}" -np 2 "$ILLUM" render "${args[@]}" \
+        -q -o nan.pfm --checkpoint-every 0.001 --checkpoint cknan.bin
+    expect_stderr "checkpoint cknan.bin: pixel 0 holds nan, which no render writes" "a checkpoint holding NaN"
+    expect_no_file nan.pfm "a checkpoint holding NaN"
+else
+    fail "checkpoint for the NaN test: no checkpoint"
+fi
+
 # --time: rounds of samples until the deadline; --spp caps them.
 expect_exit 0 "--time with --spp" -- "${MPI[@]}" -np 2 "$ILLUM" render cornell --width 48 \
     --height 32 --time 100 --spp 6 --threads 1 -q -o time.pfm --stats time.json
