@@ -143,6 +143,14 @@ static int parse_options(int argc, char **argv, options *o)
                   "--latitude DEG --longitude DEG");
         return IL_EXIT_USAGE;
     }
+    /* The whole period within the years the sun's position covers
+     * (scene/sun.c: 1900-01-01 to 2101-01-01 UTC), said now, not mid-count. */
+    double end = o->desc.start + (o->desc.hours > 0.0 ? o->desc.hours : 24.0) * 3600.0;
+    if (!(o->desc.start >= -2208988800.0 && end <= 4133980800.0)) {
+        cli_error("--from %s with --hours: the period must lie within the years 1900 to 2100 (UTC)",
+                  o->from);
+        return IL_EXIT_BAD_INPUT;
+    }
     const char *dot = o->output ? strrchr(o->output, '.') : NULL;
     if (o->output && !(dot && !strcasecmp(dot, ".csv"))) {
         cli_error("%s: the hours are written as .csv", o->output);

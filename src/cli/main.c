@@ -69,6 +69,10 @@ int main(int argc, char **argv)
         return IL_EXIT_OK;
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
+        if (argc > 2) {
+            cli_error("%s takes no argument ('%s')", cmd, argv[2]);
+            return IL_EXIT_USAGE;
+        }
         puts("illum " IL_VERSION_STRING);
         return IL_EXIT_OK;
     }

@@ -9,6 +9,7 @@ for c in render info compare; do
     expect_stdout "usage: illum $c" "$c --help"
 done
 expect_exit 0 "version" -- "$ILLUM" --version
+expect_exit 2 "version with an argument" -- "$ILLUM" --version extra
 expect_exit 0 "help render" -- "$ILLUM" help render
 expect_stdout "usage: illum render" "help render"
 expect_exit 2 "help of an unknown command" -- "$ILLUM" help nosuch

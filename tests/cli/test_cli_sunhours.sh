@@ -77,6 +77,12 @@ expect_stderr "UTC offset" "no offset"
 expect_exit 1 "step 0" -- "$ILLUM" sunhours court.json --plane y=0 "${day[@]}" --step 0
 expect_exit 1 "latitude 95" -- "$ILLUM" sunhours court.json --plane y=0 --from 2026-03-20T00:00Z --latitude 95 --longitude 0
 expect_exit 1 "not csv" -- "$ILLUM" sunhours court.json --plane y=0 "${day[@]}" -o hours.png
+# A period running past 2100 (found by fuzzing: it failed mid-count without
+# naming the option).
+expect_exit 1 "a period past 2100" -- "$ILLUM" sunhours court.json --plane y=0 --from 2100-12-31T23:59Z \
+    --latitude 0 --longitude 0 -o late.csv
+expect_stderr "the period must lie within the years 1900 to 2100" "a period past 2100"
+expect_no_file late.csv "a period past 2100"
 expect_exit 1 "missing scene" -- "$ILLUM" sunhours nothing.json --plane y=0 "${day[@]}" -o none.csv
 expect_no_file none.csv "missing scene"
 finish
