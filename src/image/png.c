@@ -33,10 +33,20 @@ static uint32_t be32(const unsigned char *p)
 }
 
 /* PNG (ISO/IEC 15948, section 5): signature, then chunks of length, type,
- * data and CRC, up to and including IEND. */
+ * data and CRC, up to and including IEND.  Each chunk's CRC-32 (5.5: over
+ * its type and data, polynomial 0xEDB88320, reflected) is checked: stb_image
+ * ignores it, and a flipped byte in the image data decodes as other
+ * pixels without a word. */
 static il_status png_check_structure(const unsigned char *data, size_t size, const char *path,
                                      il_error *err)
 {
+    uint32_t table[256];
+    for (uint32_t n = 0; n < 256; n++) {
+        uint32_t c = n;
+        for (int k = 0; k < 8; k++)
+            c = c & 1u ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        table[n] = c;
+    }
     size_t off = 8;
     bool first = true;
     for (;;) {
@@ -52,6 +62,12 @@ static il_status png_check_structure(const unsigned char *data, size_t size, con
         if (size - off - 12 < len)
             return il_fail(err, IL_ERR_FORMAT, "%s: PNG file is truncated (chunk '%.4s')", path,
                            (const char *)type);
+        uint32_t crc = 0xFFFFFFFFu;
+        for (size_t k = 0; k < 4 + (size_t)len; k++)
+            crc = table[(crc ^ type[k]) & 0xFFu] ^ (crc >> 8);
+        if ((crc ^ 0xFFFFFFFFu) != be32(type + 4 + len))
+            return il_fail(err, IL_ERR_FORMAT, "%s: PNG chunk '%.4s' is corrupt (its CRC does not "
+                           "match)", path, (const char *)type);
         off += 12 + (size_t)len;
         if (memcmp(type, "IEND", 4) == 0)
             return IL_OK;

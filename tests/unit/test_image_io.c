@@ -368,6 +368,39 @@ static double srgb_eotf(double c)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+/* A PNG whose IDAT byte is flipped: stb_image decodes it as other pixels,
+ * the chunk's CRC finds it (png_check_structure). */
+static void test_png_crc(void)
+{
+    char p[1100];
+    il_error err = {0};
+    il_image im = alloc_image(8, 8);
+    for (int i = 0; i < 8 * 8 * 3; i++)
+        im.rgb[i] = (float)(i % 7) / 7.0f;
+    CHECK_OK(il_image_write(&im, tmp_path(p, "crc.png"), NULL, &err), &err);
+    il_image_free(&im);
+    unsigned char buf[4096];
+    FILE *f = fopen(p, "rb");
+    size_t n = f ? fread(buf, 1, sizeof buf, f) : 0;
+    if (f)
+        fclose(f);
+    unsigned char *idat = NULL;
+    for (size_t k = 0; k + 4 <= n && !idat; k++)
+        if (!memcmp(buf + k, "IDAT", 4))
+            idat = buf + k;
+    CHECK(idat != NULL);
+    if (!idat)
+        return;
+    il_image back = {0};
+    CHECK_OK(il_image_read(p, &back, &err), &err);   /* as written: fine */
+    il_image_free(&back);
+    idat[4 + 3] ^= 0x10;   /* a byte of the compressed data */
+    save(tmp_path(p, "crc-flipped.png"), buf, n);
+    CHECK(il_image_read(p, &back, &err) == IL_ERR_FORMAT);
+    CHECK(strstr(err.message, "crc-flipped.png: PNG chunk 'IDAT' is corrupt (its CRC does not match)"));
+    il_image_free(&back);
+}
+
 static void test_png(void)
 {
     char p[1100];
@@ -868,6 +901,7 @@ int main(void)
     test_pfm_exact();
     test_pfm_variants();
     test_png();
+    test_png_crc();
     test_png_grey_alpha_and_jpeg();
     test_exr_foreign();
     test_corrupt_files();
