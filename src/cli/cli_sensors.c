@@ -83,6 +83,11 @@ int cli_plane_grid(const cli_plane *plane, const double area[4], double spacing,
                   len0, len1);
         return IL_EXIT_BAD_INPUT;
     }
+    if (!(len0 <= 1e15 && len1 <= 1e15)) {
+        cli_error("the measuring area is %g by %g, out of range (at most 1e15 a side, as scene "
+                  "coordinates)", len0, len1);
+        return IL_EXIT_BAD_INPUT;
+    }
     double p = spacing > 0.0 ? spacing : standard_cell(len0, len1);
     /* As many cells as the nearest whole number of lengths over p, with a
      * sensor at the centre of each (the standard's grid). */

@@ -71,6 +71,8 @@ printf '0 0 0\n1e39 0 0\n' > huge.csv
 expect_exit 1 "points: 1e39" -- "$ILLUM" illuminance lamp.json --points huge.csv -o bad.csv
 expect_stderr "huge.csv:2: expected" "points: 1e39"
 expect_no_file bad.csv "points: bad numbers"
+expect_exit 1 "an area of 2e308" -- "$ILLUM" illuminance lamp.json --plane y=0 --area -1e308,-1e308,1e308,1e308 -o bad.csv
+expect_stderr "out of range (at most 1e15 a side" "an area of 2e308"
 
 # The same readings with one thread and two (the Cornell box: noisy paths).
 expect_exit 0 "1 thread" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 64 --threads 1 -q -o t1.csv
