@@ -70,11 +70,12 @@ il_status il_atomic_check(const char *path, il_error *err)
     if (!path[0])
         return il_fail(err, IL_ERR_IO, "an output file name is empty");
     struct stat sb;
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+    bool exists = stat(path, &sb) == 0;
+    if (exists && S_ISDIR(sb.st_mode))
         return il_fail(err, IL_ERR_IO, "%s: is a folder, not a file", path);
     /* The output replaces the file by renaming over it, which would replace
      * a device such as /dev/null, or a pipe, by a plain file. */
-    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+    if (exists && !S_ISREG(sb.st_mode))
         return il_fail(err, IL_ERR_IO, "%s: is a device or a pipe, not a file (outputs are written as "
                        "files)", path);
     il_atomic_file af;

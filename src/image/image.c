@@ -9,11 +9,11 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <strings.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "image/tonemap.h"
 
 il_status il_image_check_size(uint64_t width, uint64_t height, const char *path,
@@ -78,9 +78,7 @@ static il_status read_file(const char *path, unsigned char **out_data, size_t *o
     FILE *f = fopen(path, "rb");
     if (!f)
         return il_fail(err, IL_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
-    /* A device such as /dev/zero never ends: only files and pipes are read. */
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
+    if (!il_input_is_file(f)) {
         fclose(f);
         return il_fail(err, IL_ERR_IO, "%s: not a file", path);
     }

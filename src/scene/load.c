@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "scene/builtin.h"
 #include "scene/loader.h"
 #include "scene/scene.h"
@@ -89,9 +90,7 @@ il_status il_load_read_file(const char *path, char **out, size_t *size, il_error
     if (!f)
         return il_fail(err, IL_ERR_IO, "%s: %s", path,
                        errno == ENOENT ? "no such file" : strerror(errno));
-    /* A device such as /dev/zero never ends: only files and pipes are read. */
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
+    if (!il_input_is_file(f)) {
         fclose(f);
         return il_fail(err, IL_ERR_IO, "%s: not a file", path);
     }
