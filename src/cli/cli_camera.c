@@ -6,6 +6,7 @@
 #include <cjson/cJSON.h>
 
 #include "cli/cli.h"
+#include "scene/loader.h"
 
 bool cli_camera_option(int argc, char **argv, int *i, cli_camera_options *o, int *rc)
 {
@@ -84,17 +85,17 @@ int cli_camera_read_file(cli_camera_options *o)
         cJSON_Delete(root);
         return IL_EXIT_BAD_INPUT;
     }
+    const char *dup = il_json_duplicate_key(root);
+    if (dup) {
+        cli_error("%s: the key \"%s\" appears twice", o->file, dup);
+        cJSON_Delete(root);
+        return IL_EXIT_BAD_INPUT;
+    }
     for (const cJSON *k = root->child; k; k = k->next) {
         static const char *const known[] = {"position", "target", "up", "fov"};
         bool ok = false;
         for (int i = 0; i < 4; i++)
             ok |= k->string && !strcmp(k->string, known[i]);
-        for (const cJSON *l = k->next; l && ok; l = l->next)
-            if (l->string && !strcmp(l->string, k->string)) {
-                cli_error("%s: the key \"%s\" appears twice", o->file, k->string);
-                cJSON_Delete(root);
-                return IL_EXIT_BAD_INPUT;
-            }
         if (!ok && !o->quiet)
             cli_error("warning: %s: unknown key \"%s\" ignored (a camera file has \"position\", "
                       "\"target\", \"up\" and \"fov\")", o->file, k->string ? k->string : "");

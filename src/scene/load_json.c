@@ -1075,13 +1075,11 @@ static const char *repeated_key(const cJSON *o)
     return dup;
 }
 
-/* The first key found twice in one object anywhere in j (cJSON keeps both,
- * and every lookup finds the first), or NULL. */
-static const char *duplicate_key(const cJSON *j)
+const char *il_json_duplicate_key(const cJSON *j)
 {
     const char *d = cJSON_IsObject(j) ? repeated_key(j) : NULL;
     for (const cJSON *a = j ? j->child : NULL; a && !d; a = a->next)
-        d = duplicate_key(a);
+        d = il_json_duplicate_key(a);
     return d;
 }
 
@@ -1107,17 +1105,19 @@ il_status il_load_json(il_scene *scene, const char *path, il_error *err)
     }
     /* What follows the scene's object must be blank: text after it is a
      * mistake (two objects, or a cut and paste) that would be ignored. */
-    const char *rest = end;
-    while (rest && rest < text + size && strchr(" \t\r\n", *rest) && *rest)
+    const char *rest = end, *dup;
+    while (rest < text + size && *rest && strchr(" \t\r\n", *rest))
         rest++;
-    const char *dup = rest && rest < text + size ? NULL : duplicate_key(root);
-    if ((rest && rest < text + size) || dup) {
+    if (rest < text + size) {
         int line, col;
-        line_col(text, rest && rest < text + size ? rest : text, &line, &col);
-        s = dup ? il_fail(err, IL_ERR_FORMAT, "%s: the key \"%s\" appears twice in one object (only "
-                          "one would be read)", path, dup)
-                : il_fail(err, IL_ERR_FORMAT, "%s: text after the scene's JSON object, near line %d, "
-                          "column %d", path, line, col);
+        line_col(text, rest, &line, &col);
+        s = il_fail(err, IL_ERR_FORMAT, "%s: text after the scene's JSON object, near line %d, "
+                    "column %d", path, line, col);
+    } else if ((dup = il_json_duplicate_key(root))) {
+        s = il_fail(err, IL_ERR_FORMAT, "%s: the key \"%s\" appears twice in one object (only one "
+                    "would be read)", path, dup);
+    }
+    if (s != IL_OK) {
         cJSON_Delete(root);
         free(text);
         return s;

@@ -48,6 +48,12 @@ il_status il_off_check(const char *path, il_error *err);
  * otherwise. */
 il_status il_gltf_check(const char *path, il_error *err);
 
+/* The first key that appears twice in one object anywhere in the JSON
+ * value j (cJSON keeps both, and every lookup finds the first), or NULL
+ * (load_json.c; the scene files and the command line's camera files). */
+struct cJSON;
+const char *il_json_duplicate_key(const struct cJSON *j);
+
 /* Reads a whole file into a NUL-terminated buffer (free() it); IL_ERR_IO naming
  * the file when it cannot be read. */
 il_status il_load_read_file(const char *path, char **out, size_t *size, il_error *err);
