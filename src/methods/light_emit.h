@@ -22,7 +22,15 @@ typedef struct il_light_emission {
     il_vec3 dir;       /* unit, the way the photon travels */
     il_vec3 power;     /* W: Le cos / (pmf pdf_area pdf_dir), the whole
                           emission as one photon (divide by the photons emitted) */
-    uint32_t light;    /* index into scene->lights */
+    uint32_t light;    /* index into scene->lights; IL_NO_LIGHT for the portals' light */
+    bool split;        /* the light paths of this scene are split at its portals
+                          (methods/portal_light.h): the lights' paths stop where
+                          they enter by one, the portals' light brings it */
+    bool portal;       /* the portals' light */
+    bool scattered;    /* ... from a surface outside: the light has bounced
+                          once already (indirect where it arrives) */
+    bool caustic;      /* ... and that surface was a delta one */
+    uint64_t rays;     /* rays cast to make it (the portals' light looks outside) */
 } il_light_emission;
 
 /* The random numbers one emission uses. */
@@ -30,8 +38,16 @@ typedef struct il_light_emission {
 
 /* Picks a light by power with u[0] (scene->light_pmf/light_cdf), a point
  * on it with u[1], u[2] and a direction with u[3], u[4]; each u in [0,1).
- * False when the sample carries no power. */
-bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], il_light_emission *out);
+ * With `portals` set, in a scene with portals and light from outside
+ * (scene->portal_light), u[0] first chooses between the lights and the
+ * portals' light (methods/portal_light.h), which draws from rng and looks
+ * outside with a path-traced sample of max_depth bounces, and a
+ * directional light's paths are partly drawn through the portals
+ * (light_emit.c, emit_origin); out->split then says that the caller must
+ * stop the lights' paths where il_portal_light_stops says.  False when
+ * the sample carries no power. */
+bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], bool portals,
+                   il_pcg32 *rng, uint32_t max_depth, il_light_emission *out);
 
 /* One bounce of a light path at surface surf with BSDF b, seen from wo:
  * samples a direction with four numbers of rng (always drawn, so the

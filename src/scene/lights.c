@@ -282,6 +282,10 @@ il_status il_lights_build(il_scene *s, il_error *err)
     for (uint32_t i = 0; i < count; i++)
         s->light_pmf[i] = il_distrib1d_pmf(&d, i);
     il_distrib1d_free(&d);
+    s->portal_light = false;
+    for (uint32_t i = 0; i < count && s->num_portals; i++)
+        s->portal_light |= s->lights[i].kind == IL_LIGHTK_ENVIRONMENT ||
+                           s->lights[i].kind == IL_LIGHTK_DIRECTIONAL;
     st = build_light_recs(s, err);
     return st == IL_OK ? build_discs(s, err) : st;
 }

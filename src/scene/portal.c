@@ -25,25 +25,34 @@ float il_portal_area_seen(const il_scene *s, il_vec3 p)
     return seen;
 }
 
-/* Möller & Trumbore 1997 (JGT 2(1)): the distance along the unit dir from p
- * to portal q, or 0 when the ray misses it.  The edges are inclusive. */
-static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
+/* Möller & Trumbore 1997 (JGT 2(1)): whether the line through p along dir
+ * crosses portal q, and where (*t along dir, either sign).  The edges are
+ * inclusive. */
+static bool line_crosses(const il_portal *q, il_vec3 p, il_vec3 dir, float *t)
 {
     il_vec3 pv = v3_cross(dir, q->e2);
     float det = v3_dot(q->e1, pv);
     if (det == 0.0f || !isfinite(det))
-        return 0.0f;
+        return false;
     float inv = 1.0f / det;
     il_vec3 sv = v3_sub(p, q->p0);
     float b1 = v3_dot(sv, pv) * inv;
     if (!(b1 >= 0.0f && b1 <= 1.0f))
-        return 0.0f;
+        return false;
     il_vec3 qv = v3_cross(sv, q->e1);
     float b2 = v3_dot(dir, qv) * inv;
     if (!(b2 >= 0.0f && b1 + b2 <= 1.0f))
-        return 0.0f;
-    float t = v3_dot(q->e2, qv) * inv;
-    return t > 0.0f ? t : 0.0f;
+        return false;
+    *t = v3_dot(q->e2, qv) * inv;
+    return true;
+}
+
+/* The distance along the unit dir from p to portal q, or 0 when the ray
+ * misses it. */
+static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
+{
+    float t;
+    return line_crosses(q, p, dir, &t) && t > 0.0f ? t : 0.0f;
 }
 
 /* A crossing nearly in the portal's plane counts for nothing: its density
@@ -53,7 +62,6 @@ static float cross_at(const il_portal *q, il_vec3 p, il_vec3 dir)
  * drops a draw whose own crossing is such, so the draws kept are exactly
  * distributed as il_portal_pdf says and MIS stays unbiased; what is left
  * out has almost no projected area. */
-#define IL_PORTAL_MIN_COS 1e-3f
 #define IL_PORTAL_MAX_TERM 1e12f
 
 /* Portal q's part of the density of direction dir from p (0: missed, or
@@ -103,6 +111,98 @@ float il_portal_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
         if (lights(&s->portals[i], p))
             pdf += density_term(&s->portals[i], p, seen, dir);
     return pdf;
+}
+
+/* The light travelling along dir enters by q (portal.h). */
+static bool enters_by(const il_portal *q, il_vec3 dir)
+{
+    return v3_dot(dir, q->n) >= IL_PORTAL_MIN_COS;
+}
+
+float il_portal_projected_area(const il_scene *s, il_vec3 dir)
+{
+    float projected = 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        if (enters_by(&s->portals[i], dir))
+            projected += s->portals[i].area * v3_dot(dir, s->portals[i].n);
+    return projected;
+}
+
+bool il_portal_sample_point(const il_scene *s, il_vec3 dir, float projected, il_vec2 u, il_vec3 *x)
+{
+    /* As il_portal_sample: the triangle by u.x, u.x rescaled within it. */
+    float rest = u.x * projected, share = 0.0f;
+    const il_portal *q = NULL;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        const il_portal *c = &s->portals[i];
+        if (!enters_by(c, dir))
+            continue;
+        q = c;
+        share = c->area * v3_dot(dir, c->n);
+        if (rest < share)
+            break;
+        rest -= share;
+    }
+    if (!q || !(share > 0.0f))
+        return false;
+    u.x = il_clampf(rest / share, 0.0f, 0x1.fffffep-1f);
+    il_vec2 b = il_sample_triangle(u);
+    *x = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
+    return true;
+}
+
+uint32_t il_portal_lines_entering(const il_scene *s, il_vec3 p, il_vec3 dir)
+{
+    uint32_t k = 0;
+    float t;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        if (enters_by(&s->portals[i], dir) && line_crosses(&s->portals[i], p, dir, &t))
+            k++;
+    return k;
+}
+
+float il_portal_total_area(const il_scene *s)
+{
+    float total = 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++)
+        total += s->portals[i].area;
+    return total;
+}
+
+bool il_portal_point(const il_scene *s, float total, il_vec2 u, il_vec3 *x, il_vec3 *n)
+{
+    float rest = u.x * total;
+    const il_portal *q = NULL;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        q = &s->portals[i];
+        if (rest < q->area)
+            break;
+        rest -= q->area;
+    }
+    if (!q)
+        return false;
+    u.x = il_clampf(rest / q->area, 0.0f, 0x1.fffffep-1f);
+    il_vec2 b = il_sample_triangle(u);
+    *x = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
+    *n = q->n;
+    return true;
+}
+
+bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                       float *t_cross, float *cos_cross)
+{
+    bool found = false;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        const il_portal *q = &s->portals[i];
+        float c = v3_dot(dir, q->n), t;
+        if (c > 0.0f && line_crosses(q, org, dir, &t) && t > 0.0f && t < t_end &&
+            (t_end - t) * c > margin && (!found || t < *t_cross)) {
+            *t_cross = t;
+            *cos_cross = c;
+            found = true;
+        }
+    }
+    return found;
 }
 
 il_status il_scene_add_portal(il_scene *s, const il_vec3 *corners, uint32_t num_triangles,

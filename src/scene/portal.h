@@ -19,6 +19,7 @@
 #define IL_SCENE_PORTAL_H
 
 #include <stdbool.h>
+#include <stdint.h>
 #include "core/vec.h"
 
 typedef struct il_scene il_scene;
@@ -26,6 +27,9 @@ typedef struct il_scene il_scene;
 /* The share of environment samples drawn through the portals at a point
  * that is on the lit side of at least one. */
 #define IL_PORTAL_SHARE 0.8f
+
+/* A crossing nearly in a portal's plane counts for nothing (portal.c). */
+#define IL_PORTAL_MIN_COS 1e-3f
 
 typedef struct il_portal {
     il_vec3 p0, e1, e2;    /* corners p0, p0 + e1, p0 + e2 */
@@ -45,5 +49,39 @@ bool il_portal_sample(const il_scene *scene, il_vec3 p, float seen, il_vec2 u, i
  * the sum over the portal triangles lighting p that the ray crosses of
  * d^2 / (seen |cos|) (pbrt-v4 4.2.3's area-to-solid-angle change). */
 float il_portal_pdf(const il_scene *scene, il_vec3 p, float seen, il_vec3 dir);
+
+/* Steering light paths (photons, Linespace injection) through the portals
+ * (methods/light_emit.c): for a direction of travel dir, the portal
+ * triangles the light enters by are those whose lit side dir points into
+ * (cos = dir . n at least IL_PORTAL_MIN_COS, as for the draws above). */
+
+/* Their projected area seen along dir: the sum of area * cos. */
+float il_portal_projected_area(const il_scene *scene, il_vec3 dir);
+
+/* A point of them, the triangle drawn by projected area (u.x) and the point
+ * uniform in it; projected = il_portal_projected_area(dir) > 0.  The lines
+ * along dir through such points have the density k / projected over the
+ * plane perpendicular to dir, k the number of portal triangles the line
+ * enters by (il_portal_lines_entering).  False when it fails (rounding). */
+bool il_portal_sample_point(const il_scene *scene, il_vec3 dir, float projected, il_vec2 u,
+                            il_vec3 *x);
+
+/* How many portal triangles the whole line through p along dir (both ways
+ * from p) enters by. */
+uint32_t il_portal_lines_entering(const il_scene *scene, il_vec3 p, il_vec3 dir);
+
+/* The portals' total area. */
+float il_portal_total_area(const il_scene *scene);
+
+/* A uniform point of all the portals (u in [0,1)^2, total = their area):
+ * *x, and *n the normal of its triangle, towards the lit side. */
+bool il_portal_point(const il_scene *scene, float total, il_vec2 u, il_vec3 *x, il_vec3 *n);
+
+/* Whether the ray org + t dir (unit), t in (0, t_end), enters by a portal
+ * triangle (crosses it towards its lit side) and ends more than `margin`
+ * beyond the triangle's plane; *t_cross, the first such crossing, and
+ * *cos_cross, dir . the triangle's normal there. */
+bool il_portal_entered(const il_scene *scene, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                       float *t_cross, float *cos_cross);
 
 #endif

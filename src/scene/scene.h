@@ -172,6 +172,9 @@ struct il_scene {
     il_light_rec *light_recs;        /* num_lights entries: what batched sampling reads of a light */
     uint32_t environment_light;      /* index into lights or IL_NO_LIGHT */
     il_light_disc *discs;   uint32_t num_discs; /* the directional lights with a disc */
+    bool portal_light;      /* portals, and light from outside (the environment or a
+                               directional light): light paths enter by the portals
+                               (methods/portal_light.h) */
 };
 
 /* Records a warning (printf format): stored for `illum info` and passed to the log callback. */

@@ -1,11 +1,15 @@
 /* Photon emission (methods/light_emit.c): every kind of light emits its analytic power
  * with the right distribution of directions, consistent with what the path
- * tracer receives from it (lights.c), and lights are chosen by power. */
+ * tracer receives from it (lights.c), and lights are chosen by power; with
+ * portals, the portals' light (methods/portal_light.c) carries what enters
+ * by them and the lights' paths stop where they enter. */
 #include <string.h>
 
 #include "scene_build.h"
 #include "core/rng.h"
 #include "methods/light_emit.h"
+#include "methods/portal_light.h"
+#include "scene/portal.h"
 #include "scene/lights.h"
 #include "trace/trace.h"
 
@@ -27,7 +31,7 @@ static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_light_emit(s, u, e);
+    return il_light_emit(s, u, true, rng, 8, e);
 }
 
 /* Statistics of N photons. */
@@ -319,6 +323,159 @@ static void test_split(void)
     il_scene_release(s);
 }
 
+/* ------------------------------------------------ portals (portal_light.c) */
+
+/* The portal of test_portal.c: 1 x 1.5 at y = 2, lighting the side below
+ * (its front faces -y); area 1.5. */
+#define PORTAL_AREA 1.5
+static void add_portal(il_scene *s)
+{
+    il_vec3 c[6] = {v3(-0.5f, 2, -0.75f), v3(0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f),
+                    v3(-0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f), v3(-0.5f, 2, 0.75f)};
+    CHECK_OK(il_scene_add_portal(s, c, 2, &g_err), &g_err);
+}
+
+/* Where the line of a photon crosses the portal's plane going down, inside
+ * the portal: its distance along the ray (negative: behind the origin);
+ * NAN when it does not. */
+static double portal_crossing(const il_light_emission *e)
+{
+    if (!(e->dir.y < 0.0f))
+        return NAN;
+    double t = (2.0 - e->org.y) / e->dir.y;
+    double x = e->org.x + t * e->dir.x, z = e->org.z + t * e->dir.z;
+    return fabs(x) <= 0.5 && fabs(z) <= 0.75 ? t : NAN;
+}
+
+/* Under a uniform sky of radiance L with nothing above the portal, the
+ * portals' light carries the flux L pi A that enters by it, from points on
+ * the portal, downwards, none of it scattered; every environment photon
+ * whose ray enters by the portal is stopped there; and the lights' share
+ * of the photons still carries the environment's whole power. */
+static void test_portal_light_environment(void)
+{
+    il_scene *s = new_scene();
+    add_ground(s);
+    il_environment_desc env = {.radiance = v3(0.5f, 1, 2)};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    add_portal(s);
+    commit(s);
+    CHECK(s->portal_light);
+    double r = s->scene_radius, portal_flux = 0, lights_flux = 0;
+    uint32_t portal = 0, bad = 0, entering = 0, stopped = 0, failed = 0;
+    il_pcg32 rng = il_pcg32_seed(21, 3);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_light_emission e;
+        if (!emit(s, &rng, &e)) {
+            failed++;
+            continue;
+        }
+        CHECK(e.split);
+        if (e.portal) {
+            portal++;
+            portal_flux += e.power.y;
+            /* Lifted off the portal's plane by the ray offset, upwards. */
+            float lift = e.org.y - 2.0f;
+            if (!(lift > 0.0f && lift < 10.0f * il_trace_epsilon(s->tracer)) ||
+                fabsf(e.org.x) > 0.5001f || fabsf(e.org.z) > 0.7501f || !(e.dir.y < 0.0f) ||
+                e.scattered || e.caustic)
+                bad++;
+            continue;
+        }
+        lights_flux += e.power.y;
+        /* Stopped where it enters (the floor below ends the ray), and only then. */
+        double t = portal_crossing(&e);
+        il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
+        float t_end = e.dir.y < 0.0f ? (-1.0f - e.org.y) / e.dir.y : INFINITY, tc = 0, cc = 0;
+        bool stops = il_portal_light_stops(s, &e, 0, &ray, t_end, &tc, &cc);
+        if (t > 0) {
+            entering++;
+            stopped += stops && fabs(tc - t) < 1e-4 * r && cc > 0.0f;
+        } else if (stops) {
+            bad++;
+        }
+    }
+    CHECK(bad == 0);
+    CHECK(failed < N_PHOTONS / 1000);      /* grazing draws and misses of the map */
+    CHECK(entering > 0 && stopped == entering);
+    CHECK_NEAR((double)portal / N_PHOTONS, IL_PORTAL_LIGHT_SHARE, 0.004);
+    CHECK_REL(portal_flux / N_PHOTONS, 1.0 * PI_D * PORTAL_AREA, 0.01);
+    CHECK_REL(lights_flux / N_PHOTONS, 4 * PI_D * PI_D * r * r, 0.02);
+    il_scene_release(s);
+}
+
+/* The sun straight down on the portal: its photons are drawn through the
+ * portal in most cases (p_disk / p_mixture weights), and the flux of those
+ * whose line crosses it is E A, the whole still E pi R^2; its direct light
+ * entering is not stopped, the same ray after a bounce is. */
+static void test_portal_directional(void)
+{
+    il_scene *s = new_scene();
+    add_ground(s);
+    add_light(s, (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = v3(0, -1, 0),
+                                 .intensity = v3s(2.0f)});
+    add_portal(s);
+    commit(s);
+    double r = s->scene_radius, through = 0, total = 0;
+    uint32_t lights = 0, crossing = 0, stopped_direct = 0, stopped_after = 0;
+    il_pcg32 rng = il_pcg32_seed(5, 8);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_light_emission e;
+        if (!emit(s, &rng, &e) || e.portal)
+            continue;       /* no environment: the portals' light sees only darkness */
+        lights++;
+        total += e.power.x;
+        double t = portal_crossing(&e);
+        if (!(t > 0))
+            continue;
+        crossing++;
+        through += e.power.x;
+        il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
+        float t_end = (-1.0f - e.org.y) / e.dir.y, tc, cc;
+        stopped_direct += il_portal_light_stops(s, &e, 0, &ray, t_end, &tc, &cc);
+        stopped_after += il_portal_light_stops(s, &e, 1, &ray, t_end, &tc, &cc);
+    }
+    double lights_share = 1.0 - IL_PORTAL_LIGHT_SHARE;
+    CHECK_NEAR((double)lights / N_PHOTONS, lights_share, 0.004);
+    /* IL_PORTAL_SHARE of them aimed at the portal, and a few more from the disk. */
+    CHECK((double)crossing / lights > IL_PORTAL_SHARE && (double)crossing / lights < IL_PORTAL_SHARE + 0.01);
+    CHECK_REL(through / N_PHOTONS, 2.0 * PORTAL_AREA, 0.01);
+    CHECK_REL(total / N_PHOTONS, 2.0 * PI_D * r * r, 0.03);
+    CHECK(stopped_direct == 0);
+    CHECK(stopped_after == crossing);
+    il_scene_release(s);
+}
+
+/* Light reaching the portal from a surface outside: a sun from below
+ * lights the underside of a roof 1 above the portal (albedo rho, so it
+ * sends L = rho E / pi down); the portals' light carries rho E A F by it
+ * (F the roof's view factor from the portal, 1 - 3e-6 for a roof of
+ * half-side 1000), every photon of it scattered, none a caustic one. */
+static void test_portal_light_scattered(void)
+{
+    il_scene *s = new_scene();
+    const float rho = 0.5f, e_sun = 3.0f;
+    uint32_t m = add_material(s, (il_material_desc){.diffuse = v3s(rho)});
+    add_quad(s, v3(0, 3, 0), v3(1000, 0, 0), v3(0, 0, 1000), m);   /* faces -y */
+    add_light(s, (il_light_desc){.type = IL_LIGHT_DIRECTIONAL, .direction = v3(0, 1, 0),
+                                 .intensity = v3s(e_sun)});
+    add_portal(s);
+    commit(s);
+    double flux = 0;
+    uint32_t bad = 0;
+    il_pcg32 rng = il_pcg32_seed(9, 1);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_light_emission e;
+        if (!emit(s, &rng, &e) || !e.portal)
+            continue;
+        flux += e.power.x;
+        bad += !e.scattered || e.caustic || e.rays < 2;
+    }
+    CHECK(bad == 0);
+    CHECK_REL(flux / N_PHOTONS, rho * e_sun * PORTAL_AREA, 0.01);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_point();
@@ -332,5 +489,8 @@ int main(void)
     test_directional_disc();
     test_environment();
     test_split();
+    test_portal_light_environment();
+    test_portal_directional();
+    test_portal_light_scattered();
     return check_report();
 }

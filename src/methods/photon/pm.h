@@ -199,12 +199,14 @@ typedef struct il_pm_deposit {
 
 typedef void (*il_pm_deposit_fn)(void *user, const il_pm_deposit *d);
 
-/* Emits photon `index` (the lights chosen by power, scene->light_pmf) and
- * follows it for at most max_depth bounces, Russian roulette by the
+/* Emits photon `index` (the lights chosen by power, scene->light_pmf; with
+ * portal_light, the light paths split at the portals, methods/portal_light.h)
+ * and follows it for at most max_depth bounces, Russian roulette by the
  * surface's albedo; calls deposit at every stored hit.  Its path depends
  * only on (seed, index).  Returns the rays it cast. */
 uint64_t il_pm_trace_photon(const il_scene *scene, uint64_t seed, uint64_t index,
-                            uint32_t max_depth, il_pm_deposit_fn deposit, void *user);
+                            uint32_t max_depth, bool portal_light, il_pm_deposit_fn deposit,
+                            void *user);
 
 /* il_photon_desc.on_step during PHOTON's set-up (pm_watch.c). */
 typedef struct il_pm_watch {
@@ -226,6 +228,8 @@ typedef struct il_pm_trace_desc {
     int threads;               /* 0: all cores */
     bool split;                /* true: caustic photons to *caustic, the rest to
                                   *global; false: all to *global (SPPM) */
+    bool portal_light;         /* split the light paths at the scene's portals
+                                  (methods/portal_light.h) */
     il_pm_watch *watch;        /* reports after every round of chunks, and may stop
                                   the tracing there; NULL: none */
 } il_pm_trace_desc;

@@ -147,6 +147,7 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
                                .max_depth = ps->max_photon_depth,
                                .threads = desc->threads,
                                .split = true,
+                               .portal_light = true,
                                .watch = &watch};
         il_status s = il_pm_trace_split(scene, &td, desc->distrib, &ph, err);
         if (s != IL_OK)

@@ -14,6 +14,7 @@
 #include "core/rng.h"
 #include "methods/photon/pm.h"
 #include "methods/light_emit.h"
+#include "methods/portal_light.h"
 #include "trace/trace.h"
 
 /* Photons per parallel work item.  Fixed, so the work and the order of the
@@ -21,6 +22,7 @@
 #define IL_PM_CHUNK 4096u
 
 static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t index, uint32_t max_depth,
+                                 bool portal_light,
                                  il_pm_deposit_fn deposit, void *user)
 {
     /* The photon's own stream: keyed by (seed, index) only. */
@@ -29,18 +31,23 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    if (!il_light_emit(s, u, &e))
-        return 0;
+    if (!il_light_emit(s, u, portal_light, &rng, max_depth, &e))
+        return e.rays;
 
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
-    bool caustic = false;   /* the last bounce was a delta one */
-    uint64_t rays = 0;
-    for (uint32_t bounces = 0;; bounces++) {
+    bool caustic = e.caustic;   /* the last bounce was a delta one */
+    uint64_t rays = e.rays;
+    /* The portals' light from a surface outside has bounced there. */
+    for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
         il_hit hit;
         rays++;
-        if (!il_trace_closest(tr, &ray, &hit))
+        bool found = il_trace_closest(tr, &ray, &hit);
+        float t_cross, cos_cross;
+        if (il_portal_light_stops(s, &e, seg, &ray, found ? hit.t : INFINITY, &t_cross, &cos_cross))
+            break;          /* entered by a portal: the portals' light brings it */
+        if (!found)
             break;          /* left the scene */
         il_surface surf;
         il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
@@ -67,9 +74,10 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
 }
 
 uint64_t il_pm_trace_photon(const il_scene *scene, uint64_t seed, uint64_t index, uint32_t max_depth,
+                            bool portal_light,
                             il_pm_deposit_fn deposit, void *user)
 {
-    return trace_one(scene, seed, index, max_depth, deposit, user);
+    return trace_one(scene, seed, index, max_depth, portal_light, deposit, user);
 }
 
 /* ------------------------------------------------------- parallel tracing */
@@ -189,7 +197,7 @@ il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm
             uint64_t lo = (c0 + (uint64_t)k) * IL_PM_CHUNK;
             uint64_t hi = lo + IL_PM_CHUNK < desc->count ? lo + IL_PM_CHUNK : desc->count;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
-                c.rays += trace_one(scene, desc->seed, desc->first + i, desc->max_depth,
+                c.rays += trace_one(scene, desc->seed, desc->first + i, desc->max_depth, desc->portal_light,
                                     chunk_deposit, &c);
             ctx[k] = c;
         }

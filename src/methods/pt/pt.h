@@ -35,6 +35,13 @@ il_status il_pt_render(const il_scene *scene, il_film *film, const il_render_des
 il_vec3 il_pt_radiance(const il_scene *scene, il_vec3 org, il_vec3 dir, il_sampler *sampler,
                        uint32_t max_depth, il_pt_strategy strategy, uint64_t *rays);
 
+/* The radiance that the surface of `hit`, found by the ray org + t dir,
+ * scatters back along it: il_pt_radiance's estimate of that ray less what
+ * the surface emits itself (methods/portal_light.c: what a portal lets in
+ * from a surface outside, whose own emission its photons bring). */
+il_vec3 il_pt_radiance_scattered(const il_scene *scene, const il_hit *hit, il_vec3 org, il_vec3 dir,
+                                 il_sampler *sampler, uint32_t max_depth, uint64_t *rays);
+
 /* The camera pass of il_pt_render (pt_wavefront.c): what il_camera_pass
  * does with il_pt_radiance, bit for bit, with the paths of a tile traced
  * together through the stream calls.  Fails only when out of memory. */

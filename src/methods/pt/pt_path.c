@@ -224,6 +224,27 @@ il_vec3 il_pt_radiance(const il_scene *s, il_vec3 org, il_vec3 dir, il_sampler *
     return st.L;
 }
 
+il_vec3 il_pt_radiance_scattered(const il_scene *s, const il_hit *hit, il_vec3 org, il_vec3 dir,
+                                 il_sampler *smp, uint32_t max_depth, uint64_t *rays)
+{
+    il_surface surf;
+    il_scene_surface(s, hit->mesh, hit->prim, hit->b1, hit->b2, &surf);
+    il_pt_state st;
+    il_pt_begin(&st, org, dir);
+    st.rays = 0;                  /* the caller traced the first ray */
+    /* The step adds the emission first, at weight 1 (st.specular): starting
+     * from its negative leaves exactly zero of it. */
+    if (!v3_is_zero(surf.material->emission))
+        st.L = v3_neg(il_emitted_radiance(surf.material, surf.ng, v3_neg(dir)));
+    bool more = il_pt_step_at(s, &st, hit, &surf, NULL, smp, max_depth, IL_PT_MIS);
+    if (st.shadow)
+        il_pt_shadow_result(&st, il_trace_visibility(s->tracer, &st.shadow_ray));
+    if (more)
+        pt_continue(s, &st, smp, max_depth, IL_PT_MIS);
+    *rays += st.rays;
+    return st.L;
+}
+
 /* A white Lambertian surface (albedo 1) reflects L = E / pi whatever the
  * direction it is seen from (Lambert's law, E = integral of L_i cos over the
  * hemisphere, f = 1/pi), so the path tracer's estimate of the radiance of

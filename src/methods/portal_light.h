@@ -1,0 +1,34 @@
+/* Light entering by the portals, as a light of its own for the light paths
+ * of photon mapping and Linespace injection (portal_light.c). */
+#ifndef IL_METHODS_PORTAL_LIGHT_H
+#define IL_METHODS_PORTAL_LIGHT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/rng.h"
+#include "methods/light_emit.h"
+#include "scene/scene.h"
+#include "trace/trace.h"
+
+/* The share of the light paths that start at the portals, in a scene where
+ * scene->portal_light is set. */
+#define IL_PORTAL_LIGHT_SHARE 0.8f
+
+/* A light path from a uniform point of the portals into their lit side,
+ * carrying what arrives there from outside (portal_light.c).  u_choice,
+ * u_pos and u_dir in [0,1); rng feeds the look outside, a path-traced
+ * sample of max_depth bounces; share: the share of the light paths drawn
+ * so.  False when the draw carries nothing. */
+bool il_portal_light_emit(const il_scene *scene, float u_choice, il_vec2 u_pos, il_vec2 u_dir,
+                          il_pcg32 *rng, uint32_t max_depth, float share, il_light_emission *out);
+
+/* Whether light path e ends on its segment `seg` (0: the one leaving the
+ * light), the ray up to t_end (INFINITY when it leaves the scene), because
+ * it enters by a portal there: the portals' light holds what it would
+ * bring.  *t_cross: where it enters; *cos_cross: the ray's direction
+ * . the portal's normal there. */
+bool il_portal_light_stops(const il_scene *scene, const il_light_emission *e, uint32_t seg,
+                           const il_ray *ray, float t_end, float *t_cross, float *cos_cross);
+
+#endif
