@@ -5,9 +5,7 @@
  * grid over the same photons return the same sets.  Data: uniform,
  * clustered, heavy duplicates, a lattice with photons exactly on the query
  * sphere and on cell boundaries, far-off coordinates with a tiny radius,
- * and n = 0, 1, 2, 1000, 100k.  The radius fitted to a map's photons
- * against the k-th nearest distance of a uniform density. */
-#include <math.h>
+ * and n = 0, 1, 2, 1000, 100k. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -341,48 +339,9 @@ static void test_edges(void)
     il_pm_map_free(&m);
 }
 
-/* il_pm_kd_fitted_radius: on the unit square x = 0 filled uniformly with n
- * photons, the k-th nearest lies at sqrt(k / (pi n)), so the fitted radius
- * is twice that (within the median's spread and the square's edges);
- * capped by max_radius; max_radius for a map of fewer than k photons, for
- * photons all on one point, and for a grid. */
-static void test_fitted_radius(void)
-{
-    il_error g_err;
-    const size_t n = 100000;
-    const uint32_t k = 100;
-    il_pm_map m;
-    CHECK_OK(il_pm_map_build(&m, make_set(PLANAR, n, 5), n, 1.0f, IL_PHOTON_KDTREE, 0.0f, &g_err), &g_err);
-    float r = 0.0f, expect = 2.0f * sqrtf((float)k / (3.14159265f * (float)n));
-    CHECK_OK(il_pm_kd_fitted_radius(&m, k, 1.0f, &r, &g_err), &g_err);
-    CHECK_REL(r, expect, 0.05);
-    CHECK_OK(il_pm_kd_fitted_radius(&m, k, 0.5f * expect, &r, &g_err), &g_err);
-    CHECK(r == 0.5f * expect);
-    il_pm_map_free(&m);
-
-    CHECK_OK(il_pm_map_build(&m, make_set(PLANAR, 50, 5), 50, 1.0f, IL_PHOTON_KDTREE, 0.0f, &g_err), &g_err);
-    CHECK_OK(il_pm_kd_fitted_radius(&m, k, 0.7f, &r, &g_err), &g_err);
-    CHECK(r == 0.7f);
-    il_pm_map_free(&m);
-
-    il_photon *same = malloc(1000 * sizeof *same);
-    for (uint32_t i = 0; i < 1000; i++)
-        same[i] = make_ph(0.25f, 0.5f, 0.75f, i);
-    CHECK_OK(il_pm_map_build(&m, same, 1000, 1.0f, IL_PHOTON_KDTREE, 0.0f, &g_err), &g_err);
-    CHECK_OK(il_pm_kd_fitted_radius(&m, k, 0.7f, &r, &g_err), &g_err);
-    CHECK(r == 0.7f);
-    il_pm_map_free(&m);
-
-    CHECK_OK(il_pm_map_build(&m, make_set(PLANAR, n, 5), n, 1.0f, IL_PHOTON_GRID, 0.01f, &g_err), &g_err);
-    CHECK_OK(il_pm_kd_fitted_radius(&m, k, 0.01f, &r, &g_err), &g_err);
-    CHECK(r == 0.01f);
-    il_pm_map_free(&m);
-}
-
 int main(void)
 {
     test_edges();
-    test_fitted_radius();
     /* 30 and 64: tables of 32 and 64 buckets for 27 cells, many collisions. */
     const size_t sizes[] = {0, 1, 2, 3, 7, 30, 64, 1000};
     for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++)
