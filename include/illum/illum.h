@@ -664,8 +664,7 @@ typedef struct il_photon_desc {
                                   SPPM: photons emitted per pass; 0 means 250,000 */
     uint32_t k;                /* neighbours per kd-tree estimate; 0 means 100 */
     float max_radius;          /* largest search radius (kd-tree) or the fixed
-                                  radius (grid); 0 means 0.02, and PHOTON's caustic
-                                  kd-tree then fits a smaller one to its photons */
+                                  radius (grid); 0 means 0.02 */
     il_photon_lookup lookup;
     il_photon_filter filter;
     uint32_t final_gather;     /* PHOTON: rays per camera hit gathering indirect

@@ -114,13 +114,6 @@ typedef struct il_pm_neighbour {
 uint32_t il_pm_knn(const il_pm_map *map, il_vec3 p, uint32_t k, float max_d2, il_pm_neighbour *out,
                    float *r2);
 
-/* A search radius fitted to a kd-tree map: twice the median distance from
- * its photons to their k-th nearest, over at most 1024 of them spread
- * through it, and not above max_radius (which it returns for a map of fewer
- * than k photons, or a grid).  Fails only when out of memory. */
-il_status il_pm_kd_fitted_radius(const il_pm_map *map, uint32_t k, float max_radius, float *radius,
-                                 il_error *err);
-
 /* Every photon within sqrt(d2) of p (either structure; for the grid d2 may
  * not exceed the build radius squared), appended to a growing buffer. */
 typedef struct il_pm_buffer {

@@ -1,7 +1,6 @@
 /* A photon map: the photons and the search structure built over them
  * (pm_kdtree.c or pm_grid.c), and the queries that dispatch to it. */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
@@ -89,42 +88,6 @@ uint32_t il_pm_knn(const il_pm_map *map, il_vec3 p, uint32_t k, float max_d2, il
     if (map->lookup == IL_PHOTON_GRID)
         return il_pm_grid_knn(map, p, k, max_d2, out, r2);
     return il_pm_kd_knn(map->photons, map->count, p, k, max_d2, out, r2);
-}
-
-static int compare_floats(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
-
-il_status il_pm_kd_fitted_radius(const il_pm_map *map, uint32_t k, float max_radius, float *radius,
-                                 il_error *err)
-{
-    *radius = max_radius;
-    if (map->lookup != IL_PHOTON_KDTREE || k == 0 || map->count < k)
-        return IL_OK;
-    enum { SAMPLES = 1024 };
-    size_t n = map->count < SAMPLES ? map->count : SAMPLES;
-    il_pm_neighbour *nb = il_malloc(k * sizeof *nb, err);
-    float *r = il_malloc(n * sizeof *r, err);
-    if (!nb || !r) {
-        free(nb);
-        free(r);
-        return IL_ERR_MEMORY;
-    }
-    float max_d2 = max_radius * max_radius;
-    for (size_t i = 0; i < n; i++) {
-        const float *p = map->photons[i * map->count / n].p;
-        float r2 = max_d2;
-        il_pm_knn(map, v3(p[0], p[1], p[2]), k, max_d2, nb, &r2);
-        r[i] = sqrtf(r2);
-    }
-    qsort(r, n, sizeof *r, compare_floats);
-    if (r[n / 2] > 0.0f)        /* else half of them lie on one point: no scale to fit */
-        *radius = il_minf(max_radius, 2.0f * r[n / 2]);
-    free(nb);
-    free(r);
-    return IL_OK;
 }
 
 il_status il_pm_range(const il_pm_map *map, il_vec3 p, float d2, il_pm_buffer *out, il_error *err)

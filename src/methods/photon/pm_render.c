@@ -31,19 +31,18 @@ typedef struct pm_method {
     const il_scene *scene;
     const il_pm_map *global, *caustic;
     il_pm_lookup lookup;
-    il_pm_lookup caustic_lookup;   /* lookup with the caustic map's radius */
     uint32_t final_gather;
     uint32_t max_depth;
     atomic_int *out_of_memory;     /* set when an estimate could not allocate */
 } pm_method;
 
-static il_vec3 estimate_caustic(const pm_method *m, const il_pm_vertex *v, il_pm_scratch *scratch)
+static il_vec3 estimate(const pm_method *m, const il_pm_map *map, const il_pm_vertex *v,
+                        il_pm_scratch *scratch)
 {
     il_vec3 L = v3(0.0f, 0.0f, 0.0f);
-    if (m->caustic->count == 0)
+    if (map->count == 0)
         return L;
-    if (il_pm_estimate(m->caustic, &m->caustic_lookup, &v->bsdf, v->s.p, v->n, v->wo, scratch, &L,
-                       NULL) != IL_OK)
+    if (il_pm_estimate(map, &m->lookup, &v->bsdf, v->s.p, v->n, v->wo, scratch, &L, NULL) != IL_OK)
         atomic_store(m->out_of_memory, 1);
     return L;
 }
@@ -70,7 +69,7 @@ static il_vec3 gather_hit(const pm_method *m, const il_pm_vertex *v, il_sampler 
     il_vec2 u = il_sampler_2d(smp);
     il_vec3 L = il_direct_light(m->scene, &v->s, &v->bsdf, v->wo, u_select, u, rays);
     L = v3_add(L, estimate_global(m, v, scratch));
-    L = v3_add(L, estimate_caustic(m, v, scratch));
+    L = v3_add(L, estimate(m, m->caustic, v, scratch));
     return v3_mul(v->beta, L);
 }
 
@@ -108,7 +107,7 @@ static il_vec3 camera_radiance(const pm_method *m, il_vec3 org, il_vec3 dir, il_
     float u_select = il_sampler_1d(smp);
     il_vec2 u = il_sampler_2d(smp);
     il_vec3 R = il_direct_light(m->scene, &x.s, &x.bsdf, x.wo, u_select, u, rays);
-    R = v3_add(R, estimate_caustic(m, &x, scratch));
+    R = v3_add(R, estimate(m, m->caustic, &x, scratch));
     R = v3_add(R, indirect(m, &x, smp, scratch, rays));
     return v3_add(L, v3_mul(x.beta, R));
 }
@@ -204,27 +203,15 @@ il_status il_pm_render(const il_scene *scene, il_film *film, const il_render_des
     double t0 = omp_get_wtime();
     il_pm_map global = {0}, caustic = {0};
     s = build_maps(scene, desc, &ps, &global, &caustic, &stats->photon, err);
-    /* The caustic map's radius, unless --radius is given: fitted to its
-     * photons.  Caustics are sharp and lie where the glass or mirror throws
-     * them, and their photons are read at every camera hit: with the
-     * default radius (2% of the scene's diagonal, 2.3 m in
-     * scenes/window-room.json, where the ground sets it) every look-up in
-     * the room searched that far for the photons its pane reflects onto the
-     * ground outside, 95% of the render's time. */
-    float caustic_radius = ps.lookup.radius;
-    if (s == IL_OK && !(desc->photon && desc->photon->max_radius > 0.0f))
-        s = il_pm_kd_fitted_radius(&caustic, ps.lookup.k, ps.lookup.radius, &caustic_radius, err);
     if (s == IL_OK) {
         atomic_int oom = 0;
         pm_method m = {.scene = scene,
                        .global = &global,
                        .caustic = &caustic,
                        .lookup = ps.lookup,
-                       .caustic_lookup = ps.lookup,
                        .final_gather = ps.final_gather,
                        .max_depth = max_depth,
                        .out_of_memory = &oom};
-        m.caustic_lookup.radius = caustic_radius;
         il_camera_pass_result r = {0};
         double t1 = omp_get_wtime();
         /* Split across processes: this process's tiles (camera_pass.c). */
