@@ -657,8 +657,10 @@ typedef bool (*il_photon_step_fn)(const il_photon_progress *progress, void *user
 
 /* Jensen's two-pass photon mapping (IL_METHOD_PHOTON) and Hachisuka &
  * Jensen's stochastic progressive photon mapping (IL_METHOD_SPPM).  Radii
- * are fractions of the scene's bounding-box diagonal, so a scene in
- * millimetres renders as the same scene in metres. */
+ * are fractions of the scene's size, so a scene in millimetres renders as
+ * the same scene in metres: the bounding box's diagonal, or, where the
+ * camera sees less than half of that, the diagonal of what it sees
+ * (docs/photon-mapping.md, "Options"). */
 typedef struct il_photon_desc {
     uint64_t photons;          /* PHOTON: photons emitted; 0 means 1,000,000.
                                   SPPM: photons emitted per pass; 0 means 250,000 */

@@ -16,8 +16,10 @@ const char cli_photon_help[] =
     "  --lookup kdtree|grid   photon search: k nearest in a kd-tree (default) or all\n"
     "                         within the radius in a hashed grid\n"
     "  --radius X             largest search radius (kd-tree) or the radius (grid), as\n"
-    "                         a fraction of the scene's diagonal, 1e-6 to 1 (default\n"
-    "                         0.02)\n"
+    "                         a fraction of the scene's size, 1e-6 to 1 (default\n"
+    "                         0.02; the size: the bounding box's diagonal, or the\n"
+    "                         diagonal of what the camera sees where that is less\n"
+    "                         than half of it)\n"
     "  --photon-depth N       most bounces a photon takes, 1 to 1024 (default\n"
     "                         max-depth - 1)\n"
     "photon only:\n"
@@ -35,7 +37,7 @@ const char cli_photon_help[] =
     "  --alpha X              fraction of new photons kept per pass, 0.01 to 0.99\n"
     "                         (default 0.7)\n"
     "  --initial-radius X     first per-pixel radius as a fraction of the scene's\n"
-    "                         diagonal, 1e-6 to 1 (default 0.01)\n";
+    "                         size, 1e-6 to 1 (default 0.01)\n";
 
 static const char *const common_names[] = {"--photons", "--lookup", "--radius", "--photon-depth"};
 static const char *const photon_names[] = {"--k", "--photon-filter", "--final-gather",

@@ -15,8 +15,9 @@
  * - Radiosity's direct light from the sky (patch_direct.c) converges to
  *   the same room with the portal; hierarchical radiosity solves
  *   scenes/window-room.json with fine elements (test_hr).
- * - Photon mapping lights that room through the portal (test_photon). */
+ * - Photon mapping and SPPM light that room through the portal (test_photon). */
 #include "mesh_compare.h"
+#include "methods/view_size.h"
 #include "scene/scene.h"
 
 #define WIN_X 1.0f   /* half-width */
@@ -179,20 +180,50 @@ static void test_hr(void)
     il_scene_release(s);
 }
 
+/* The default radii's scale (methods/view_size.h): the room the camera of
+ * scenes/window-room.json looks at (4 x 3 x 5 m, diagonal 7.1 m), not the
+ * 80 m ground's 113 m; a Cornell box, seen whole, keeps its box's
+ * diagonal exactly; a view that sees nothing keeps it too. */
+static void test_view_size(void)
+{
+    il_scene *s = load_committed(IL_SOURCE_DIR "/scenes/window-room.json");
+    if (s) {
+        float v = il_view_size(s);
+        printf("window room: view size %.3f m, bounding box diagonal %.3f m\n", v,
+               v3_length(v3_sub(s->bounds_max, s->bounds_min)));
+        CHECK(v > 4.0f && v < 8.0f);
+        il_scene_release(s);
+    }
+    s = load_committed("cornell");
+    if (s) {
+        CHECK(il_view_size(s) == v3_length(v3_sub(s->bounds_max, s->bounds_min)));
+        il_scene_release(s);
+    }
+    il_scene *sky = new_scene();
+    add_quad(sky, v3(0, -1, 0), v3(5, 0, 0), v3(0, 0, -5), 0);
+    set_camera(sky, v3(0, 0, 0), v3(0, 1, 0), v3(0, 0, 1), 40.0f);   /* looking up */
+    il_environment_desc env = {.radiance = v3s(1.0f)};
+    CHECK_OK(il_scene_set_environment(sky, &env, &g_err), &g_err);
+    commit(sky);
+    CHECK(il_view_size(sky) == v3_length(v3_sub(sky->bounds_max, sky->bounds_min)));
+    il_scene_release(sky);
+}
+
 /* Photon mapping of scenes/window-room.json, where photons enter the room
  * only by the window (methods/portal_light.c): the portals' light carries
  * what the sky and the ground outside send in, so most photons land in the
  * room (of 10^6 photons, 716 did before, and the room read 9% dark), and
  * every wall, the floor and the ceiling come within 5% of the path tracer.
- * The radius is the room's scale: the default, 2% of the diagonal that the
- * 80 m ground spans, is 2.3 m. */
+ * The default radius is 2% of what the camera sees (methods/view_size.h),
+ * the room, not of the 80 m ground's diagonal: 11 cm, not 2.3 m.  SPPM
+ * lights the room the same way. */
 static void test_photon(void)
 {
     il_scene *s = load_committed(IL_SOURCE_DIR "/scenes/window-room.json");
     if (!s)
         return;
     CHECK(s->portal_light);
-    il_photon_desc pd = {.photons = 300000, .max_radius = 0.002f};
+    il_photon_desc pd = {.photons = 300000};
     il_render_desc rd = {.method = IL_METHOD_PHOTON, .photon = &pd, .spp = 32, .seed = 2, .threads = 2};
     il_render_stats st = {0};
     il_image a = render_desc_image(s, 64, 48, &rd, &st);
@@ -203,6 +234,16 @@ static void test_photon(void)
            image_mean(&b, 1));
     CHECK(st.photon.stored_global > st.photon.emitted / 2);
     CHECK(compare_mesh_means(s, &a, &b, 0.05, 0.0, "photon", "pt") >= 5);
+    CHECK_REL(image_mean(&a, 1), image_mean(&b, 1), 0.03);
+    il_image_free(&a);
+
+    il_photon_desc sd = {.photons = 50000};
+    il_render_desc sp = {.method = IL_METHOD_SPPM, .photon = &sd, .spp = 32, .seed = 2, .threads = 2};
+    a = render_desc_image(s, 64, 48, &sp, &st);
+    printf("window room: sppm %.5f (%llu photons stored of %llu)\n", image_mean(&a, 1),
+           (unsigned long long)st.photon.stored, (unsigned long long)st.photon.emitted);
+    CHECK(st.photon.stored > st.photon.emitted / 2);
+    CHECK(compare_mesh_means(s, &a, &b, 0.05, 0.0, "sppm", "pt") >= 5);
     CHECK_REL(image_mean(&a, 1), image_mean(&b, 1), 0.03);
     il_image_free(&a);
     il_image_free(&b);
@@ -216,6 +257,7 @@ int main(void)
     test_path_tracer();
     test_radiosity();
     test_hr();
+    test_view_size();
     test_photon();
     return check_report();
 }

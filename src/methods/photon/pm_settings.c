@@ -1,8 +1,10 @@
-/* The photon-mapping options: defaults, ranges, radii in scene units. */
+/* The photon-mapping options: defaults, ranges, radii in scene units (fractions
+ * of the size of what the camera sees, methods/view_size.h). */
 #include <math.h>
 
 #include "core/error.h"
 #include "methods/photon/pm.h"
+#include "methods/view_size.h"
 
 #define PM_MAX_PHOTONS 10000000000ull /* 10^10: 200 GB of photons, surely a typo beyond */
 #define PM_MAX_K 100000u
@@ -22,7 +24,7 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
         return il_fail(err, IL_ERR_INVALID, "photon: k %u is out of range (1 to %u)", d->k, PM_MAX_K);
     if (!(d->max_radius >= 0.0f && d->max_radius <= 1.0f))
         return il_fail(err, IL_ERR_INVALID,
-                       "photon: radius %g is out of range (0 to 1 of the scene's diagonal)",
+                       "photon: radius %g is out of range (0 to 1 of the scene's size)",
                        (double)d->max_radius);
     if ((unsigned)d->lookup > IL_PHOTON_GRID)
         return il_fail(err, IL_ERR_INVALID, "photon: unknown lookup %d", (int)d->lookup);
@@ -36,15 +38,13 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
                        (double)d->alpha);
     if (!(d->initial_radius >= 0.0f && d->initial_radius <= 1.0f))
         return il_fail(err, IL_ERR_INVALID,
-                       "sppm: initial radius %g is out of range (0 to 1 of the scene's diagonal)",
+                       "sppm: initial radius %g is out of range (0 to 1 of the scene's size)",
                        (double)d->initial_radius);
     if (d->max_photon_depth > PM_MAX_DEPTH)
         return il_fail(err, IL_ERR_INVALID, "photon: max photon depth %u is out of range (1 to %u)",
                        d->max_photon_depth, PM_MAX_DEPTH);
 
-    float diagonal = v3_length(v3_sub(scene->bounds_max, scene->bounds_min));
-    if (!(diagonal > 0.0f))
-        diagonal = 1.0f;
+    float diagonal = il_view_size(scene);
     out->photons = d->photons ? d->photons : (sppm ? 250000u : 1000000u);
     out->lookup.lookup = d->lookup;
     out->lookup.k = d->k ? d->k : 100u;

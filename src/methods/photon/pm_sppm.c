@@ -176,7 +176,8 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
                            .seed = s->desc->seed,
                            .max_depth = s->ps.max_photon_depth,
                            .threads = s->threads,
-                           .split = false};
+                           .split = false,
+                           .portal_light = true};
     il_status status = s->ps.max_photon_depth > 0
                            ? il_pm_trace_split(s->scene, &td, s->distrib, &ph, err)
                            : IL_OK;
