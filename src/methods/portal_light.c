@@ -1,5 +1,5 @@
 /* Light entering by the portals, as a light of its own for the light paths
- * of photon mapping and Linespace injection.
+ * of photon mapping and SPPM.
  *
  * Few photons of the environment enter a room by its window: the window
  * covers a small share of the disk they leave from (2.4 m^2 of a disk of
@@ -110,7 +110,7 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
 }
 
 bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32_t seg,
-                           const il_ray *ray, float t_end, float *t_cross, float *cos_cross)
+                           const il_ray *ray, float t_end, float *t_cross)
 {
     if (!e->split)
         return false;
@@ -120,5 +120,5 @@ bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32
      * has not entered: the margin is a few times il_offset_origin's. */
     float mag = il_maxf(fabsf(ray->org.x), il_maxf(fabsf(ray->org.y), fabsf(ray->org.z)));
     float margin = 4.0f * (il_trace_epsilon(s->tracer) + mag * 4.0f * FLT_EPSILON);
-    return il_portal_entered(s, ray->org, ray->dir, t_end, margin, t_cross, cos_cross);
+    return il_portal_entered(s, ray->org, ray->dir, t_end, margin, t_cross);
 }

@@ -1,5 +1,5 @@
 /* Light entering by the portals, as a light of its own for the light paths
- * of photon mapping and Linespace injection (portal_light.c). */
+ * of photon mapping and SPPM (portal_light.c). */
 #ifndef IL_METHODS_PORTAL_LIGHT_H
 #define IL_METHODS_PORTAL_LIGHT_H
 
@@ -26,9 +26,8 @@ bool il_portal_light_emit(const il_scene *scene, float u_choice, il_vec2 u_pos, 
 /* Whether light path e ends on its segment `seg` (0: the one leaving the
  * light), the ray up to t_end (INFINITY when it leaves the scene), because
  * it enters by a portal there: the portals' light holds what it would
- * bring.  *t_cross: where it enters; *cos_cross: the ray's direction
- * . the portal's normal there. */
+ * bring.  *t_cross (when not NULL): where it enters. */
 bool il_portal_light_stops(const il_scene *scene, const il_light_emission *e, uint32_t seg,
-                           const il_ray *ray, float t_end, float *t_cross, float *cos_cross);
+                           const il_ray *ray, float t_end, float *t_cross);
 
 #endif

@@ -189,19 +189,21 @@ bool il_portal_point(const il_scene *s, float total, il_vec2 u, il_vec3 *x, il_v
 }
 
 bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
-                       float *t_cross, float *cos_cross)
+                       float *t_cross)
 {
     bool found = false;
+    float first = INFINITY;
     for (uint32_t i = 0; i < s->num_portals; i++) {
         const il_portal *q = &s->portals[i];
         float c = v3_dot(dir, q->n), t;
         if (c > 0.0f && line_crosses(q, org, dir, &t) && t > 0.0f && t < t_end &&
-            (t_end - t) * c > margin && (!found || t < *t_cross)) {
-            *t_cross = t;
-            *cos_cross = c;
+            (t_end - t) * c > margin && t < first) {
+            first = t;
             found = true;
         }
     }
+    if (t_cross)
+        *t_cross = first;
     return found;
 }
 

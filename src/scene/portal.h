@@ -79,9 +79,9 @@ bool il_portal_point(const il_scene *scene, float total, il_vec2 u, il_vec3 *x, 
 
 /* Whether the ray org + t dir (unit), t in (0, t_end), enters by a portal
  * triangle (crosses it towards its lit side) and ends more than `margin`
- * beyond the triangle's plane; *t_cross, the first such crossing, and
- * *cos_cross, dir . the triangle's normal there. */
+ * beyond the triangle's plane; *t_cross (when not NULL), the first such
+ * crossing. */
 bool il_portal_entered(const il_scene *scene, il_vec3 org, il_vec3 dir, float t_end, float margin,
-                       float *t_cross, float *cos_cross);
+                       float *t_cross);
 
 #endif

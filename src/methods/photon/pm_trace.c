@@ -44,8 +44,7 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
         il_hit hit;
         rays++;
         bool found = il_trace_closest(tr, &ray, &hit);
-        float t_cross, cos_cross;
-        if (il_portal_light_stops(s, &e, seg, &ray, found ? hit.t : INFINITY, &t_cross, &cos_cross))
+        if (il_portal_light_stops(s, &e, seg, &ray, found ? hit.t : INFINITY, NULL))
             break;          /* entered by a portal: the portals' light brings it */
         if (!found)
             break;          /* left the scene */
