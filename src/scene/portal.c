@@ -16,13 +16,67 @@ static bool lights(const il_portal *q, il_vec3 p)
     return v3_dot(v3_sub(p, q->p0), q->n) > 0.0f;
 }
 
+/* The light travelling along dir enters by q (portal.h). */
+static bool enters_by(const il_portal *q, il_vec3 dir)
+{
+    return v3_dot(dir, q->n) >= IL_PORTAL_MIN_COS;
+}
+
+/* How a portal triangle is drawn: by area among those lighting a point v,
+ * by projected area among those a direction v enters by, or by area among
+ * all; weight() is what q counts for (0: not drawn). */
+typedef enum { BY_LIT_AREA, BY_PROJECTED_AREA, BY_AREA } pick_rule;
+
+static float weight(const il_portal *q, pick_rule rule, il_vec3 v)
+{
+    switch (rule) {
+    case BY_LIT_AREA: return lights(q, v) ? q->area : 0.0f;
+    case BY_PROJECTED_AREA: return enters_by(q, v) ? q->area * v3_dot(v, q->n) : 0.0f;
+    default: return q->area;
+    }
+}
+
+static float total_weight(const il_scene *s, pick_rule rule, il_vec3 v)
+{
+    float total = 0.0f;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        float w = weight(&s->portals[i], rule, v);
+        if (w > 0.0f)
+            total += w;
+    }
+    return total;
+}
+
+/* The triangle drawn by u.x among the weights (total: their sum), u.x then
+ * rescaled to [0,1) within it, and a uniform point *at of it; NULL when no
+ * triangle weighs anything. */
+static const il_portal *pick(const il_scene *s, pick_rule rule, il_vec3 v, float total, il_vec2 u,
+                             il_vec3 *at)
+{
+    float x = u.x * total, w = 0.0f;
+    const il_portal *q = NULL;
+    for (uint32_t i = 0; i < s->num_portals; i++) {
+        const il_portal *c = &s->portals[i];
+        float wc = weight(c, rule, v);
+        if (!(wc > 0.0f))
+            continue;
+        q = c;
+        w = wc;
+        if (x < w)
+            break;
+        x -= w;
+    }
+    if (!q)
+        return NULL;
+    u.x = il_clampf(x / w, 0.0f, 0x1.fffffep-1f);
+    il_vec2 b = il_sample_triangle(u);
+    *at = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
+    return q;
+}
+
 float il_portal_area_seen(const il_scene *s, il_vec3 p)
 {
-    float seen = 0.0f;
-    for (uint32_t i = 0; i < s->num_portals; i++)
-        if (lights(&s->portals[i], p))
-            seen += s->portals[i].area;
-    return seen;
+    return total_weight(s, BY_LIT_AREA, p);
 }
 
 /* Möller & Trumbore 1997 (JGT 2(1)): whether the line through p along dir
@@ -76,24 +130,10 @@ static float density_term(const il_portal *q, il_vec3 p, float seen, il_vec3 dir
 
 bool il_portal_sample(const il_scene *s, il_vec3 p, float seen, il_vec2 u, il_vec3 *dir)
 {
-    /* The triangle by area among those lighting p (u.x), then u.x rescaled
-     * to [0,1) within it and a uniform point of it. */
-    float x = u.x * seen;
-    const il_portal *q = NULL;
-    for (uint32_t i = 0; i < s->num_portals; i++) {
-        const il_portal *c = &s->portals[i];
-        if (!lights(c, p))
-            continue;
-        q = c;
-        if (x < c->area)
-            break;
-        x -= c->area;
-    }
+    il_vec3 at;
+    const il_portal *q = pick(s, BY_LIT_AREA, p, seen, u, &at);
     if (!q)
         return false;
-    u.x = il_minf(x / q->area, 0x1.fffffep-1f);
-    il_vec2 b = il_sample_triangle(u);
-    il_vec3 at = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
     il_vec3 d = v3_sub(at, p);
     float len = v3_length(d);
     if (!(len > 0.0f))
@@ -113,42 +153,14 @@ float il_portal_pdf(const il_scene *s, il_vec3 p, float seen, il_vec3 dir)
     return pdf;
 }
 
-/* The light travelling along dir enters by q (portal.h). */
-static bool enters_by(const il_portal *q, il_vec3 dir)
-{
-    return v3_dot(dir, q->n) >= IL_PORTAL_MIN_COS;
-}
-
 float il_portal_projected_area(const il_scene *s, il_vec3 dir)
 {
-    float projected = 0.0f;
-    for (uint32_t i = 0; i < s->num_portals; i++)
-        if (enters_by(&s->portals[i], dir))
-            projected += s->portals[i].area * v3_dot(dir, s->portals[i].n);
-    return projected;
+    return total_weight(s, BY_PROJECTED_AREA, dir);
 }
 
 bool il_portal_sample_point(const il_scene *s, il_vec3 dir, float projected, il_vec2 u, il_vec3 *x)
 {
-    /* As il_portal_sample: the triangle by u.x, u.x rescaled within it. */
-    float rest = u.x * projected, share = 0.0f;
-    const il_portal *q = NULL;
-    for (uint32_t i = 0; i < s->num_portals; i++) {
-        const il_portal *c = &s->portals[i];
-        if (!enters_by(c, dir))
-            continue;
-        q = c;
-        share = c->area * v3_dot(dir, c->n);
-        if (rest < share)
-            break;
-        rest -= share;
-    }
-    if (!q || !(share > 0.0f))
-        return false;
-    u.x = il_clampf(rest / share, 0.0f, 0x1.fffffep-1f);
-    il_vec2 b = il_sample_triangle(u);
-    *x = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
-    return true;
+    return pick(s, BY_PROJECTED_AREA, dir, projected, u, x) != NULL;
 }
 
 uint32_t il_portal_lines_entering(const il_scene *s, il_vec3 p, il_vec3 dir)
@@ -163,29 +175,15 @@ uint32_t il_portal_lines_entering(const il_scene *s, il_vec3 p, il_vec3 dir)
 
 float il_portal_total_area(const il_scene *s)
 {
-    float total = 0.0f;
-    for (uint32_t i = 0; i < s->num_portals; i++)
-        total += s->portals[i].area;
-    return total;
+    return total_weight(s, BY_AREA, v3s(0.0f));
 }
 
 bool il_portal_point(const il_scene *s, float total, il_vec2 u, il_vec3 *x, il_vec3 *n)
 {
-    float rest = u.x * total;
-    const il_portal *q = NULL;
-    for (uint32_t i = 0; i < s->num_portals; i++) {
-        q = &s->portals[i];
-        if (rest < q->area)
-            break;
-        rest -= q->area;
-    }
-    if (!q)
-        return false;
-    u.x = il_clampf(rest / q->area, 0.0f, 0x1.fffffep-1f);
-    il_vec2 b = il_sample_triangle(u);
-    *x = v3_add(q->p0, v3_add(v3_scale(q->e1, b.x), v3_scale(q->e2, b.y)));
-    *n = q->n;
-    return true;
+    const il_portal *q = pick(s, BY_AREA, v3s(0.0f), total, u, x);
+    if (q)
+        *n = q->n;
+    return q != NULL;
 }
 
 bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
