@@ -128,26 +128,32 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
     return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
 }
 
-bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], bool portals,
-                   il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
+bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
+                   const il_distrib1d *split_choice, il_pcg32 *rng, uint32_t max_depth,
+                   il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
     if (s->num_lights == 0 || !s->light_cdf || !s->light_pmf)
         return false;
     il_vec2 u_pos = v2(u[1], u[2]), u_dir = v2(u[3], u[4]);
     float u_light = u[0], lights_share = 1.0f;
-    bool split = portals && s->portal_light;
+    bool split = split_choice && s->portal_light;
     out->split = split;
+    uint32_t li;
+    float pmf, u_rest;
     if (split) {
         const float share = IL_PORTAL_LIGHT_SHARE;
         if (u_light < share)
             return il_portal_light_emit(s, u_light / share, u_pos, u_dir, rng, max_depth, share, out);
         u_light = il_clampf((u_light - share) / (1.0f - share), 0.0f, 0x1.fffffep-1f);
         lights_share = 1.0f - share;
+        li = il_distrib1d_sample_discrete(split_choice, u_light, &pmf, &u_rest);
+    } else {
+        li = pick_light(s, u_light);
+        pmf = s->light_pmf[li];
+        u_rest = rest_of(s, li, u_light);
     }
-    uint32_t li = pick_light(s, u_light);
     const il_light *l = &s->lights[li];
-    float pmf = s->light_pmf[li];
     if (!(pmf > 0.0f))
         return false;
     out->light = li;
@@ -177,7 +183,7 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], bool po
         float r = s->scene_radius, scale;
         il_vec3 dir = v3_neg(il_directional_sample(v3_neg(l->direction), l->cos_cutoff, u_dir, &scale));
         il_vec3 c = v3_fma(s->scene_center, dir, -r);
-        float steered = emit_origin(s, split, dir, c, u_pos, rest_of(s, li, u_light), &out->org);
+        float steered = emit_origin(s, split, dir, c, u_pos, u_rest, &out->org);
         out->p = out->org;
         out->dir = dir;
         out->power = v3_scale(l->intensity, IL_PI * r * r * scale * inv_pmf * steered);

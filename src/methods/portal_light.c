@@ -43,6 +43,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/sampler.h"
@@ -107,6 +108,22 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     out->dir = d;
     out->power = v3_scale(L, c * area / (pdf * share));
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
+}
+
+il_status il_portal_light_choice(const il_scene *s, float outside, il_distrib1d *choice,
+                                 il_error *err)
+{
+    float *w = il_malloc((s->num_lights ? s->num_lights : 1) * sizeof *w, err);
+    if (!w)
+        return IL_ERR_MEMORY;
+    for (uint32_t i = 0; i < s->num_lights; i++) {
+        il_light_kind k = s->lights[i].kind;
+        bool out = k == IL_LIGHTK_ENVIRONMENT || k == IL_LIGHTK_DIRECTIONAL;
+        w[i] = s->lights[i].power * (out ? outside : 1.0f);
+    }
+    il_status st = il_distrib1d_init(choice, w, s->num_lights, err);
+    free(w);
+    return st;
 }
 
 bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32_t seg,

@@ -26,12 +26,19 @@ static void add_light(il_scene *s, il_light_desc d)
     CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
 }
 
+/* One emission; in a scene with portals, the light paths split there and
+ * the lights chosen by their own power (il_portal_light_choice, outside 1). */
 static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
 {
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_light_emit(s, u, true, rng, 8, e);
+    il_distrib1d choice = {0};
+    if (s->portal_light)
+        CHECK_OK(il_portal_light_choice(s, 1.0f, &choice, &g_err), &g_err);
+    bool ok = il_light_emit(s, u, s->portal_light ? &choice : NULL, rng, 8, e);
+    il_distrib1d_free(&choice);
+    return ok;
 }
 
 /* Statistics of N photons. */
@@ -476,6 +483,50 @@ static void test_portal_light_scattered(void)
     il_scene_release(s);
 }
 
+/* The lights' choice for split paths (il_portal_light_choice): a lamp
+ * inside and the sky, the sky's power scaled by `outside`: the lamp gets
+ * its share of the lights' photons by the scaled powers, and each light's
+ * photons still carry its own power on average. */
+static void test_portal_light_choice(void)
+{
+    il_scene *s = new_scene();
+    add_ground(s);
+    il_environment_desc env = {.radiance = v3s(0.5f)};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0), .intensity = v3s(3.0f)});
+    add_portal(s);
+    commit(s);
+    const float outside = 0.01f;
+    il_distrib1d choice;
+    CHECK_OK(il_portal_light_choice(s, outside, &choice, &g_err), &g_err);
+    double r = s->scene_radius, lamp_power = 4 * PI_D * 3.0, sky_power = 4 * PI_D * PI_D * r * r * 0.5;
+    double lamp_flux = 0, sky_flux = 0;
+    uint32_t lamp = 0, lights = 0;
+    il_pcg32 rng = il_pcg32_seed(13, 2);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        float u[IL_LIGHT_EMIT_DIMS];
+        for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
+            u[k] = il_pcg32_float(&rng);
+        il_light_emission e;
+        if (!il_light_emit(s, u, &choice, &rng, 8, &e) || e.portal)
+            continue;
+        lights++;
+        if (s->lights[e.light].kind == IL_LIGHTK_POINT) {
+            lamp++;
+            lamp_flux += e.power.y;
+        } else {
+            sky_flux += e.power.y;
+        }
+    }
+    /* The powers are luminances of these grey lights. */
+    double w_lamp = lamp_power, w_sky = sky_power * outside;
+    CHECK_NEAR((double)lamp / lights, w_lamp / (w_lamp + w_sky), 0.01);
+    CHECK_REL(lamp_flux / N_PHOTONS, lamp_power, 0.02);
+    CHECK_REL(sky_flux / N_PHOTONS, sky_power, 0.03);
+    il_distrib1d_free(&choice);
+    il_scene_release(s);
+}
+
 int main(void)
 {
     test_point();
@@ -492,5 +543,6 @@ int main(void)
     test_portal_light_environment();
     test_portal_directional();
     test_portal_light_scattered();
+    test_portal_light_choice();
     return check_report();
 }

@@ -127,7 +127,7 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     /* The portals' light is photon mapping's alone (docs/photon-mapping.md,
      * "Windows"): here it did not lower the error. */
     il_light_emission e;
-    if (!il_light_emit(s, u, false, &rng, depth, &e))
+    if (!il_light_emit(s, u, NULL, &rng, depth, &e))
         return;
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};

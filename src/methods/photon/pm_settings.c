@@ -1,9 +1,11 @@
 /* The photon-mapping options: defaults, ranges, radii in scene units (fractions
  * of the size of what the camera sees, methods/view_size.h). */
 #include <math.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "methods/photon/pm.h"
+#include "methods/portal_light.h"
 #include "methods/view_size.h"
 
 #define PM_MAX_PHOTONS 10000000000ull /* 10^10: 200 GB of photons, surely a typo beyond */
@@ -45,6 +47,7 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
                        d->max_photon_depth, PM_MAX_DEPTH);
 
     float diagonal = il_view_size(scene);
+    out->size = diagonal;
     out->photons = d->photons ? d->photons : (sppm ? 250000u : 1000000u);
     out->lookup.lookup = d->lookup;
     out->lookup.k = d->k ? d->k : 100u;
@@ -58,4 +61,15 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
     uint32_t depth = max_depth ? max_depth : 8u;
     out->max_photon_depth = d->max_photon_depth ? d->max_photon_depth : depth - 1u;
     return IL_OK;
+}
+
+il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, il_distrib1d *choice,
+                              il_error *err)
+{
+    memset(choice, 0, sizeof *choice);
+    if (!scene->portal_light)
+        return IL_OK;
+    float diagonal = v3_length(v3_sub(scene->bounds_max, scene->bounds_min));
+    float outside = diagonal > 0.0f ? ps->size / diagonal : 1.0f;
+    return il_portal_light_choice(scene, outside * outside, choice, err);
 }
