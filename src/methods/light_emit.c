@@ -129,7 +129,7 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
 }
 
 bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
-                   const il_distrib1d *split_choice, il_pcg32 *rng, uint32_t max_depth,
+                   const il_distrib1d *choice, il_pcg32 *rng, uint32_t max_depth,
                    il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
@@ -137,7 +137,7 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
         return false;
     il_vec2 u_pos = v2(u[1], u[2]), u_dir = v2(u[3], u[4]);
     float u_light = u[0], lights_share = 1.0f;
-    bool split = split_choice && s->portal_light;
+    bool split = choice && s->portal_light;
     out->split = split;
     uint32_t li;
     float pmf, u_rest;
@@ -147,7 +147,7 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
             return il_portal_light_emit(s, u_light / share, u_pos, u_dir, rng, max_depth, share, out);
         u_light = il_clampf((u_light - share) / (1.0f - share), 0.0f, 0x1.fffffep-1f);
         lights_share = 1.0f - share;
-        li = il_distrib1d_sample_discrete(split_choice, u_light, &pmf, &u_rest);
+        li = il_distrib1d_sample_discrete(choice, u_light, &pmf, &u_rest);
     } else {
         li = pick_light(s, u_light);
         pmf = s->light_pmf[li];
