@@ -679,6 +679,11 @@ typedef struct il_photon_desc {
                                   Lambertian surfaces from irradiance precomputed at
                                   every 4th photon (Christensen 1999); nonzero: a
                                   full estimate at every hit */
+    uint32_t no_portal_light;  /* 0 (default): in a scene with portals and light from
+                                  outside, most photons start at the portals as the
+                                  light coming in by them (docs/photon-mapping.md,
+                                  "Windows"); nonzero: all leave the lights, as
+                                  without portals */
     /* Optional, for display (the viewer's photon points): called once the
      * photons are traced (PHOTON: the global map, which 0, then the caustic
      * map, which 1; SPPM: every pass, which 2) with their positions, 3

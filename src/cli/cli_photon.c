@@ -22,6 +22,9 @@ const char cli_photon_help[] =
     "                         than half of it)\n"
     "  --photon-depth N       most bounces a photon takes, 1 to 1024 (default\n"
     "                         max-depth - 1)\n"
+    "  --portal-light on|off  in a scene with portals and light from outside, start\n"
+    "                         most photons at the portals (default on; off: all\n"
+    "                         leave the lights, as without portals)\n"
     "photon only:\n"
     "  --k N                  photons per kd-tree estimate, 1 to 100000 (default 100)\n"
     "  --photon-filter cone|epanechnikov\n"
@@ -39,7 +42,8 @@ const char cli_photon_help[] =
     "  --initial-radius X     first per-pixel radius as a fraction of the scene's\n"
     "                         size, 1e-6 to 1 (default 0.01)\n";
 
-static const char *const common_names[] = {"--photons", "--lookup", "--radius", "--photon-depth"};
+static const char *const common_names[] = {"--photons", "--lookup", "--radius", "--photon-depth",
+                                           "--portal-light"};
 static const char *const photon_names[] = {"--k", "--photon-filter", "--final-gather",
                                            "--precomputed-irradiance"};
 static const char *const sppm_names[] = {"--alpha", "--initial-radius"};
@@ -78,6 +82,13 @@ static bool parse_value(const char *name, const char *v, il_photon_desc *d)
         if (!cli_parse_on_off(name, v, &on))
             return false;
         d->no_precomputed_irradiance = !on;
+        return true;
+    }
+    if (!strcmp(name, "--portal-light")) {
+        bool on;
+        if (!cli_parse_on_off(name, v, &on))
+            return false;
+        d->no_portal_light = !on;
         return true;
     }
     if (!strcmp(name, "--radius")) {

@@ -5,7 +5,7 @@
 
 expect_exit 0 "render --method photon --help" -- "$ILLUM" render --method photon --help
 for o in --photons --lookup --radius --photon-depth --k --photon-filter --final-gather --alpha \
-         --initial-radius --precomputed-irradiance; do
+         --initial-radius --precomputed-irradiance --portal-light; do
     expect_stdout -- "$o" "photon help lists $o"
 done
 expect_exit 0 "info cornell-spheres" -- "$ILLUM" info cornell-spheres
@@ -38,6 +38,19 @@ expect_file sppm.exr "render sppm"
 expect_stderr "illum: sppm: 3 passes, 30000 photons emitted" "render sppm: summary line"
 checks=$((checks + 1))
 grep -q '"passes":[[:space:]]*3' sppm.json || fail "sppm.json: passes is not 3"
+
+# Photons through a window: with the portals' light most of them reach the
+# room and are stored; without it, as without portals, almost none do.
+stored() { sed -n 's/.*"stored_global":[[:space:]]*\([0-9]*\).*/\1/p' "$1"; }
+for pl in on off; do
+    expect_exit 0 "window room, --portal-light $pl" -- "$ILLUM" render "$IL_SOURCE_DIR/scenes/window-room.json" \
+        --method photon --photons 20000 --portal-light $pl --width 16 --height 12 --spp 1 -q \
+        -o window-$pl.pfm --stats window-$pl.json
+done
+checks=$((checks + 1))
+[ "$(stored window-on.json)" -gt 10000 ] && [ "$(stored window-off.json)" -lt 1000 ] ||
+    fail "window room: $(stored window-on.json) photons stored with the portals' light, $(stored window-off.json) without"
+expect_exit 1 "--portal-light maybe" -- "$ILLUM" render cornell --method sppm --portal-light maybe -q -o bad.exr
 
 # Ctrl-C while photons are traced (2e8 would take minutes): the tracing
 # stops, the image with the photons traced so far is written, exit 130.

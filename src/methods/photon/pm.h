@@ -286,13 +286,15 @@ typedef struct il_pm_settings {
     float initial_radius;
     uint32_t max_photon_depth;
     float size;                /* the scene's size the radii are fractions of */
+    bool portal_light;         /* split the light paths at the portals (not
+                                  il_photon_desc.no_portal_light) */
 } il_pm_settings;
 il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d, uint32_t max_depth,
                                  bool sppm, il_pm_settings *out, il_error *err);
 /* The lights' choice for light paths split at the scene's portals
  * (il_portal_light_choice, with the environment and the sun scaled to the
  * settings' size); *choice left zeroed, the paths not split, in a scene
- * without them. */
+ * without them or when the settings turn the portals' light off. */
 il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, il_distrib1d *choice,
                               il_error *err);
 

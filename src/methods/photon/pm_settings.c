@@ -48,6 +48,7 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
 
     float diagonal = il_view_size(scene);
     out->size = diagonal;
+    out->portal_light = !d->no_portal_light;
     out->photons = d->photons ? d->photons : (sppm ? 250000u : 1000000u);
     out->lookup.lookup = d->lookup;
     out->lookup.k = d->k ? d->k : 100u;
@@ -67,7 +68,7 @@ il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, i
                               il_error *err)
 {
     memset(choice, 0, sizeof *choice);
-    if (!scene->portal_light)
+    if (!scene->portal_light || !ps->portal_light)
         return IL_OK;
     float diagonal = v3_length(v3_sub(scene->bounds_max, scene->bounds_min));
     float outside = diagonal > 0.0f ? ps->size / diagonal : 1.0f;
