@@ -37,7 +37,14 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
-    bool caustic = e.caustic;   /* the last bounce was a delta one */
+    /* Jensen 2001, 9.1: the caustic map holds L S+ D light, which only
+     * mirrors and glass have turned since it left the light; a diffuse (or
+     * glossy) bounce gives the photon to the global map for good.  ("The
+     * last bounce was specular" also took L D S+ D light, which a final
+     * gather reaches through the mirror as well: counted twice.)  The
+     * portals' light from a surface outside is a caustic when that surface
+     * was a mirror or glass. */
+    bool caustic = !e.scattered || e.caustic;
     uint64_t rays = e.rays;
     /* The portals' light from a surface outside has bounced there. */
     for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
@@ -66,8 +73,10 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
         if (bounces >= max_depth)
             break;
 
-        if (!il_light_path_scatter(tr, &surf, &b, wo, &rng, &power, &ray, &caustic))
+        bool delta;
+        if (!il_light_path_scatter(tr, &surf, &b, wo, &rng, &power, &ray, &delta))
             break;          /* absorbed */
+        caustic = caustic && delta;
     }
     return rays;
 }
