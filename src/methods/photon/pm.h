@@ -195,7 +195,7 @@ typedef struct il_pm_deposit {
     il_vec3 wi;                /* unit, towards where it came from */
     il_vec3 power;             /* W, as if this one photon carried the whole
                                   emission: divide by the photons emitted */
-    bool caustic;              /* a delta bounce since the last non-delta one */
+    bool caustic;              /* only delta bounces since the light (L S+ D) */
 } il_pm_deposit;
 
 typedef void (*il_pm_deposit_fn)(void *user, const il_pm_deposit *d);

@@ -4,13 +4,16 @@
  *
  *   L(x) = Le (seen directly or through mirrors and glass)
  *        + direct light by a shadow ray      (paths L D E)
- *        + the caustic map's estimate        (L S+ D E, L D S+ D E, ...)
- *        + indirect diffuse light            (L ... D D E)
+ *        + the caustic map's estimate        (L S+ D E: only mirrors and glass
+ *                                             since the light)
+ *        + indirect light                    (L ... D S* D E)
  *
- * where the last term is the global map's estimate at x, or, with final
- * gathering (Jensen 2001, 9.3.2), the mean over N BSDF-sampled rays of what
- * their first non-delta hit x' reflects towards x: direct light at x' by a
- * shadow ray plus the global and caustic estimates at x'.  At Lambertian
+ * where the last term is the global map's estimate at x (it holds every
+ * stored photon the caustic map does not), or, with final gathering
+ * (Jensen 2001, 9.3.2), the mean over N BSDF-sampled rays, followed through
+ * mirrors and glass, of what their first non-delta hit x' reflects towards
+ * x: direct light at x' by a shadow ray plus the global and caustic
+ * estimates at x'.  At Lambertian
  * surfaces the global map is read from the irradiance precomputed at every
  * 4th photon (Christensen 1999, pm_irradiance.c).  Direct-light
  * photons are never stored (pm_trace.c), so no path is counted twice. */
