@@ -49,6 +49,16 @@ static const char *const photon_names[] = {"--k", "--photon-filter", "--final-ga
 static const char *const sppm_names[] = {"--alpha", "--initial-radius"};
 #define COUNT(a) (sizeof a / sizeof a[0])
 
+/* An on|off option whose library field is a "no_" flag: 0 for on, 1 for off. */
+static bool parse_off_flag(const char *name, const char *v, uint32_t *no)
+{
+    bool on;
+    if (!cli_parse_on_off(name, v, &on))
+        return false;
+    *no = !on;
+    return true;
+}
+
 static bool parse_value(const char *name, const char *v, il_photon_desc *d)
 {
     double x = 0.0;
@@ -77,20 +87,10 @@ static bool parse_value(const char *name, const char *v, il_photon_desc *d)
         }
         return true;
     }
-    if (!strcmp(name, "--precomputed-irradiance")) {
-        bool on;
-        if (!cli_parse_on_off(name, v, &on))
-            return false;
-        d->no_precomputed_irradiance = !on;
-        return true;
-    }
-    if (!strcmp(name, "--portal-light")) {
-        bool on;
-        if (!cli_parse_on_off(name, v, &on))
-            return false;
-        d->no_portal_light = !on;
-        return true;
-    }
+    if (!strcmp(name, "--precomputed-irradiance"))
+        return parse_off_flag(name, v, &d->no_precomputed_irradiance);
+    if (!strcmp(name, "--portal-light"))
+        return parse_off_flag(name, v, &d->no_portal_light);
     if (!strcmp(name, "--radius")) {
         bool ok = cli_parse_double(name, v, 1e-6, 1.0, &x);
         d->max_radius = (float)x;

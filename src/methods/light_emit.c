@@ -33,14 +33,6 @@ static uint32_t pick_light(const il_scene *s, float u)
     return lo;
 }
 
-/* u rescaled to [0,1) within light li's interval of the CDF: a number for
- * a choice made after the light's, independent of it. */
-static float rest_of(const il_scene *s, uint32_t li, float u)
-{
-    float lo = s->light_cdf[li], width = s->light_cdf[li + 1] - lo;
-    return width > 0.0f ? il_clampf((u - lo) / width, 0.0f, 0x1.fffffep-1f) : 0.0f;
-}
-
 /* A point on the disk of radius r, centred at c and perpendicular to unit d. */
 static il_vec3 disk_point(il_vec3 c, il_vec3 d, float r, il_vec2 u)
 {
@@ -152,7 +144,7 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
     } else {
         li = pick_light(s, u_light);
         pmf = s->light_pmf[li];
-        u_rest = rest_of(s, li, u_light);
+        u_rest = 0.0f;      /* unused: only a split path steers through the portals */
     }
     const il_light *l = &s->lights[li];
     if (!(pmf > 0.0f))
