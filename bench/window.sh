@@ -1,9 +1,11 @@
 #!/bin/sh
-# Photon mapping and SPPM through a window (docs/photon-mapping.md,
+# Photon mapping, SPPM and Linespace through a window (docs/photon-mapping.md,
 # "Windows"): scenes/window-room.json, 160x120, under the overcast sky and
 # under the clear sky with the sun at 30 degrees, against the path tracer
 # at 1024 spp (another seed); photon at 64 spp (seconds, photons stored), SPPM and the
-# path tracer for 10 s each (passes).  Each line: the relative MSE and the
+# path tracer for 10 s each (passes); Linespace at 64 spp with the portals'
+# light and without (docs/linespace.md, "Windows"), and the path tracer for
+# the time Linespace took.  Each line: the relative MSE and the
 # mean luminance against the reference's, from `illum compare`.
 # Usage: bench/window.sh [BUILD_DIR] [THREADS] (from the repository root).
 set -e
@@ -25,4 +27,11 @@ for sky in overcast clear; do
     "$ILLUM" render $SCENE $SIZE $SKY --method $m --time 10 --spp 1000000 -o "$OUT/a.exr" --stats "$OUT/s.json"
     echo "$sky, $m 10 s: $(stat "'%d passes' % d['spp']"); $(error "$OUT/a.exr")"
   done
+  for pl in off on; do
+    "$ILLUM" render $SCENE $SIZE $SKY --method linespace --portal-light $pl --spp 64 -o "$OUT/a.exr" --stats "$OUT/s.json"
+    echo "$sky, linespace 64 spp, --portal-light $pl: $(stat "'%.2f s, grid %s' % (d['total_seconds'], 'x'.join(str(g) for g in d['linespace']['grid']))"); $(error "$OUT/a.exr")"
+  done
+  T_LS=$(stat "'%.2f' % d['total_seconds']")
+  "$ILLUM" render $SCENE $SIZE $SKY --method pt --time "$T_LS" --spp 1000000 -o "$OUT/a.exr" --stats "$OUT/s.json"
+  echo "$sky, pt for linespace's $T_LS s: $(stat "'%d passes' % d['spp']"); $(error "$OUT/a.exr")"
 done

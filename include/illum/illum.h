@@ -852,6 +852,12 @@ typedef struct il_linespace_desc {
                                   default: slower samples, less bias; docs/linespace.md) */
     float glossy_n1;           /* Phong exponents below n1 read the Linespace; 0 means 10 */
     float glossy_n2;           /* above n2 trace on; in between blend; 0 means 100 */
+    bool no_portal_light;      /* false (default): in a scene with portals and light
+                                  from outside, most light paths start at the portals
+                                  and the grid covers the interior the camera sees
+                                  (docs/linespace.md, "Windows"); true: the grid over
+                                  the whole scene, all paths from the lights, as
+                                  without portals */
     il_linespace_step_fn on_step; /* progress and stop of the injection; NULL: none
                                   (not called when split across processes) */
     void *on_step_user;
@@ -859,6 +865,10 @@ typedef struct il_linespace_desc {
 
 typedef struct il_linespace_stats {
     uint32_t grid[3];          /* voxels per axis */
+    float grid_min[3], grid_max[3]; /* the grid's box */
+    bool interior;             /* it covers the interior the camera sees, not the
+                                  whole scene (no_portal_light) */
+    uint64_t outside;          /* camera path vertices outside it, which traced on */
     uint32_t n;
     uint64_t voxels;           /* voxels holding a Linespace (non-empty) */
     uint64_t shafts;           /* shafts stored (those containing geometry) */

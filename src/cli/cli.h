@@ -358,10 +358,15 @@ typedef struct cli_method_options {
     cli_ibl_options ibl;
     cli_rsm_options rsm;
     cli_linespace_options linespace;
+    cli_method_note light_paths;     /* --portal-light: photon, sppm and linespace */
 } cli_method_options;
 
 /* As cli_radiosity_option, for an option of any method. */
 bool cli_method_options_parse(int argc, char **argv, int *i, cli_method_options *m, int *rc);
+/* A usage message and IL_EXIT_USAGE when m holds an option of the methods
+ * with light paths (--portal-light) and `method` is none of them; else
+ * IL_EXIT_OK. */
+int cli_method_light_paths_check(const char *command, const cli_method_options *m, il_method method);
 /* Points desc's per-method option pointers at m's descs. */
 void cli_method_options_install(cli_method_options *m, il_render_desc *desc);
 

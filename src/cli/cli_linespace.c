@@ -38,7 +38,11 @@ const char cli_linespace_help[] =
     "                         (default off)\n"
     "  --glossy-n1 E          Phong exponents below E read the Linespace (default 10)\n"
     "  --glossy-n2 E          Phong exponents above E trace on, blend between\n"
-    "                         (default 100); both 0.001 to 10^6\n";
+    "                         (default 100); both 0.001 to 10^6\n"
+    "  --portal-light on|off  in a scene with portals and light from outside, start\n"
+    "                         most light paths at the portals and lay the grid over\n"
+    "                         the interior the camera sees (default on; off: the\n"
+    "                         whole scene, all paths from the lights)\n";
 
 static const char *const names[] = {"--grid", "--linespace-n", "--inject-rays", "--inject-depth",
                                     "--blur", "--occlusion-test", "--fallback", "--solid-angle",
@@ -149,6 +153,12 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
     cJSON *g = cJSON_AddArrayToObject(r, "grid");
     for (int k = 0; k < 3; k++)
         cJSON_AddItemToArray(g, cJSON_CreateNumber(s->grid[k]));
+    cJSON *lo = cJSON_AddArrayToObject(r, "grid_min"), *hi = cJSON_AddArrayToObject(r, "grid_max");
+    for (int k = 0; k < 3; k++) {
+        cJSON_AddItemToArray(lo, cJSON_CreateNumber(s->grid_min[k]));
+        cJSON_AddItemToArray(hi, cJSON_CreateNumber(s->grid_max[k]));
+    }
+    cJSON_AddBoolToObject(r, "interior", s->interior);
     cJSON_AddNumberToObject(r, "n", s->n);
     cJSON_AddNumberToObject(r, "voxels", (double)s->voxels);
     cJSON_AddNumberToObject(r, "shafts", (double)s->shafts);
@@ -162,6 +172,7 @@ void cli_linespace_stats_json(cJSON *parent, const il_linespace_stats *s)
     cJSON_AddNumberToObject(r, "lookup_empty", (double)s->lookup_empty);
     cJSON_AddNumberToObject(r, "lookup_occluded", (double)s->lookup_occluded);
     cJSON_AddNumberToObject(r, "lookup_coarse", (double)s->lookup_coarse);
+    cJSON_AddNumberToObject(r, "outside", (double)s->outside);
     cJSON_AddNumberToObject(r, "seconds_build", s->seconds_build);
     cJSON_AddNumberToObject(r, "seconds_inject", s->seconds_inject);
     cJSON_AddNumberToObject(r, "seconds_sample", s->seconds_sample);
@@ -176,9 +187,10 @@ void cli_linespace_summary(const il_linespace_stats *s)
         snprintf(coarse, sizeof coarse, ", %.1f%% of them from the coarse level",
                  100.0 * (double)s->lookup_coarse / (double)s->lookup_hits);
     fprintf(stderr,
-            "illum: linespace: grid %ux%ux%u, N %u, %llu voxels, %llu shafts, %.1f MB; %llu paths "
+            "illum: linespace: grid %ux%ux%u%s, N %u, %llu voxels, %llu shafts, %.1f MB; %llu paths "
             "injected; %.1f%% of lookups found light%s (build %.2f s, inject %.2f s, sample %.2f s)\n",
-            s->grid[0], s->grid[1], s->grid[2], s->n, (unsigned long long)s->voxels,
+            s->grid[0], s->grid[1], s->grid[2], s->interior ? " over the interior in view" : "", s->n,
+            (unsigned long long)s->voxels,
             (unsigned long long)s->shafts, (double)s->memory_bytes / (1024.0 * 1024.0),
             (unsigned long long)s->inject_rays, hit, coarse, s->seconds_build, s->seconds_inject,
             s->seconds_sample);

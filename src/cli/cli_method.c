@@ -73,9 +73,38 @@ int cli_method_mismatch(const char *command, const cli_method_note *note, const 
     return IL_EXIT_USAGE;
 }
 
+/* The options of every method that traces light paths. */
+static const char *const light_path_names[] = {"--portal-light"};
+
+static bool light_path_option(int argc, char **argv, int *i, cli_method_options *m, int *rc)
+{
+    const char *v = NULL;
+    const char *name = cli_method_option(argc, argv, i, light_path_names,
+                                         sizeof light_path_names / sizeof light_path_names[0],
+                                         &m->light_paths, &v);
+    if (!name)
+        return false;
+    bool on = true;
+    *rc = !v ? IL_EXIT_USAGE : cli_parse_on_off(name, v, &on) ? IL_EXIT_OK : IL_EXIT_BAD_INPUT;
+    m->photon.desc.no_portal_light = !on;
+    m->linespace.desc.no_portal_light = !on;
+    return true;
+}
+
+int cli_method_light_paths_check(const char *command, const cli_method_options *m, il_method method)
+{
+    if (!m->light_paths.given || method == IL_METHOD_PHOTON || method == IL_METHOD_SPPM ||
+        method == IL_METHOD_LINESPACE)
+        return IL_EXIT_OK;
+    cli_error("%s is an option of the methods that trace light paths; it needs --method photon, "
+              "sppm or linespace (see 'illum %s --method photon --help')",
+              m->light_paths.first, command);
+    return IL_EXIT_USAGE;
+}
+
 bool cli_method_options_parse(int argc, char **argv, int *i, cli_method_options *m, int *rc)
 {
-    return cli_radiosity_option(argc, argv, i, &m->rad, rc) ||
+    return light_path_option(argc, argv, i, m, rc) || cli_radiosity_option(argc, argv, i, &m->rad, rc) ||
            cli_hr_option(argc, argv, i, &m->hr, rc) ||
            cli_photon_option(argc, argv, i, &m->photon, rc) ||
            cli_ibl_option(argc, argv, i, &m->ibl, rc) ||

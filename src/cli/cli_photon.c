@@ -42,8 +42,8 @@ const char cli_photon_help[] =
     "  --initial-radius X     first per-pixel radius as a fraction of the scene's\n"
     "                         size, 1e-6 to 1 (default 0.01)\n";
 
-static const char *const common_names[] = {"--photons", "--lookup", "--radius", "--photon-depth",
-                                           "--portal-light"};
+/* --portal-light, which Linespace takes too, is cli_method.c's. */
+static const char *const common_names[] = {"--photons", "--lookup", "--radius", "--photon-depth"};
 static const char *const photon_names[] = {"--k", "--photon-filter", "--final-gather",
                                            "--precomputed-irradiance"};
 static const char *const sppm_names[] = {"--alpha", "--initial-radius"};
@@ -89,8 +89,6 @@ static bool parse_value(const char *name, const char *v, il_photon_desc *d)
     }
     if (!strcmp(name, "--precomputed-irradiance"))
         return parse_off_flag(name, v, &d->no_precomputed_irradiance);
-    if (!strcmp(name, "--portal-light"))
-        return parse_off_flag(name, v, &d->no_portal_light);
     if (!strcmp(name, "--radius")) {
         bool ok = cli_parse_double(name, v, 1e-6, 1.0, &x);
         d->max_radius = (float)x;

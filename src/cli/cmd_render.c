@@ -196,7 +196,8 @@ static int check_method_options(const render_options *o, bool final)
         return cli_method_mismatch("render", &o->m.linespace.note, "linespace", "linespace");
     if (o->m.rsm.note.given && o->desc.method != IL_METHOD_RSM)
         return cli_method_mismatch("render", &o->m.rsm.note, "reflective shadow map", "rsm");
-    return cli_photon_check_method("render", &o->m.photon, o->desc.method);
+    int rc = cli_method_light_paths_check("render", &o->m, o->desc.method);
+    return rc != IL_EXIT_OK ? rc : cli_photon_check_method("render", &o->m.photon, o->desc.method);
 }
 
 static int parse_options(int argc, char **argv, render_options *o)

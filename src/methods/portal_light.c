@@ -1,5 +1,5 @@
 /* Light entering by the portals, as a light of its own for the light paths
- * of photon mapping and SPPM.
+ * of photon mapping, SPPM and Linespace's injection.
  *
  * Few photons of the environment enter a room by its window: the window
  * covers a small share of the disk they leave from (2.4 m^2 of a disk of
@@ -109,6 +109,13 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     out->dir = d;
     out->power = v3_scale(L, c * area / (pdf * share));
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
+}
+
+float il_portal_light_outside(const il_scene *s, float size)
+{
+    float diagonal = v3_length(v3_sub(s->bounds_max, s->bounds_min));
+    float outside = diagonal > 0.0f ? size / diagonal : 1.0f;
+    return outside * outside;
 }
 
 il_status il_portal_light_choice(const il_scene *s, float outside, il_distrib1d *choice,

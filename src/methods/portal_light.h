@@ -1,5 +1,5 @@
 /* Light entering by the portals, as a light of its own for the light paths
- * of photon mapping and SPPM (portal_light.c). */
+ * of photon mapping, SPPM and Linespace's injection (portal_light.c). */
 #ifndef IL_METHODS_PORTAL_LIGHT_H
 #define IL_METHODS_PORTAL_LIGHT_H
 
@@ -35,6 +35,9 @@ bool il_portal_light_emit(const il_scene *scene, float u_choice, il_vec2 u_pos, 
  * is the scene's own.  Fails only when out of memory. */
 il_status il_portal_light_choice(const il_scene *scene, float outside, il_distrib1d *choice,
                                  il_error *err);
+/* That `outside` for a scene whose camera sees a part of size `size`
+ * (methods/view_size.h): (size / the bounding box's diagonal)^2. */
+float il_portal_light_outside(const il_scene *scene, float size);
 
 /* Whether light path e ends on its segment `seg` (0: the one leaving the
  * light), the ray up to t_end (INFINITY when it leaves the scene), because

@@ -5,7 +5,7 @@
 
 expect_exit 0 "render --method linespace --help" -- "$ILLUM" render --method linespace --help
 for o in --grid --linespace-n --inject-rays --inject-depth --blur --occlusion-test --fallback \
-         --solid-angle --coarse --coarse-below --trace-first-bounce --glossy-n1 --glossy-n2; do
+         --solid-angle --coarse --coarse-below --trace-first-bounce --glossy-n1 --glossy-n2 --portal-light; do
     expect_stdout -- "$o" "linespace help lists $o"
 done
 
@@ -43,6 +43,22 @@ cmp -s fallback-on.pfm fallback-occluded.pfm && fail "--fallback on and occluded
 expect_exit 0 "render linespace, final gather" -- "$ILLUM" render cornell --method linespace \
     --inject-rays 20000 --grid 4 --trace-first-bounce on --width 16 --height 16 --spp 2 -q -o gather.pfm
 expect_file gather.pfm "render linespace, final gather"
+
+# The window room (portals, the sky outside): the grid over the room in
+# view and the portals' light, or with --portal-light off the whole scene.
+for pl in on off; do
+    expect_exit 0 "window room, --portal-light $pl" -- "$ILLUM" render "$IL_SOURCE_DIR/scenes/window-room.json" \
+        --method linespace --inject-rays 20000 --portal-light $pl --width 16 --height 12 --spp 1 \
+        -o window-$pl.pfm --stats window-$pl.json
+    expect_file window-$pl.pfm "window room, --portal-light $pl"
+    [ $pl = on ] && expect_stderr "grid 8x7x5 over the interior in view" "window room: summary line"
+done
+checks=$((checks + 2))
+grep -q '"interior":[[:space:]]*true' window-on.json || fail "window-on.json: the grid is not the interior's"
+grep -q '"interior":[[:space:]]*false' window-off.json || fail "window-off.json: the grid is not the scene's"
+expect_exit 2 "--portal-light with pt" -- "$ILLUM" render cornell --portal-light off -q -o bad.exr
+expect_stderr "needs --method photon, sppm or linespace" "--portal-light with pt"
+expect_exit 1 "--portal-light maybe" -- "$ILLUM" render cornell --method linespace --portal-light maybe -q -o bad.exr
 
 # Ctrl-C during the injection (2e9 light paths would take minutes): it
 # stops, the image with the paths injected so far is written, exit 130.

@@ -41,6 +41,9 @@ typedef struct il_ls_settings {
     bool trace_first_bounce; /* read only after one non-delta bounce was traced */
     float n1, n2;           /* glossy thresholds on the Phong exponent */
     uint32_t max_depth;     /* of the camera paths */
+    bool portal_light;      /* in a scene with portals and light from outside: the
+                               portals' light (methods/portal_light.h) injected, the
+                               grid over the interior the camera sees (ls_build.c) */
     il_linespace_step_fn on_step; /* the injection's progress and stop; NULL: none */
     void *on_step_user;
 } il_ls_settings;
@@ -181,6 +184,8 @@ uint32_t il_ls_coarse_shaft(uint32_t n, uint32_t shaft);
 
 typedef struct il_linespace {
     il_vec3 lo, hi;              /* the grid's box */
+    bool partial;                /* it covers only part of the scene (il_view_interior):
+                                    a point outside has no Linespace */
     il_vec3 vsize;               /* one voxel */
     il_vec3 inv_vsize;           /* 1 / vsize per axis */
     il_vec3 patch_scale;         /* n / vsize per axis: patches per unit length */
@@ -218,8 +223,9 @@ static inline il_ls_coarse *il_ls_coarse_entry(const il_linespace *ls, uint32_t 
     return &ls->coarse[((size_t)voxel * ls->num_coarse + c) * 2u + dir];
 }
 
-/* Builds the grid over the scene's bounds, bins the triangles into the
- * voxels and, in every non-empty voxel, keeps the shafts whose convex hull
+/* Builds the grid over the scene's bounds (or, with the portals' light,
+ * the interior the camera sees: il_view_interior), bins the triangles into
+ * the voxels and, in every non-empty voxel, keeps the shafts whose convex hull
  * the voxel's triangles may touch with their candidate lists. */
 il_status il_ls_build(const il_scene *scene, const il_ls_settings *s, int threads, il_linespace *ls,
                       il_error *err);
@@ -239,6 +245,12 @@ static inline bool il_ls_cell_of(const il_linespace *ls, il_vec3 p, uint32_t c[3
         c[i] = (uint32_t)(k < 0 ? 0 : (k >= (int)ls->res[i] ? (int)ls->res[i] - 1 : k));
     }
     return true;
+}
+/* Whether p lies in the grid's box. */
+static inline bool il_ls_inside(const il_linespace *ls, il_vec3 p)
+{
+    return p.x >= ls->lo.x && p.y >= ls->lo.y && p.z >= ls->lo.z && p.x <= ls->hi.x && p.y <= ls->hi.y &&
+           p.z <= ls->hi.z;
 }
 /* The stored-shaft number of (voxel, shaft), or -1 when not stored. */
 int64_t il_ls_slot(const il_linespace *ls, uint32_t voxel, uint32_t shaft);

@@ -29,6 +29,7 @@
 
 #include "core/error.h"
 #include "methods/linespace/ls.h"
+#include "methods/view_size.h"
 
 typedef struct hull {
     il_vec3 lo, hi;          /* bounding box, voxel-local */
@@ -260,6 +261,13 @@ static il_status bin_triangles(const il_scene *scene, il_linespace *ls, uint32_t
                 il_vec3 v[3] = {g->p0, g->p1, g->p2};
                 il_vec3 tlo = v3_min(v[0], v3_min(v[1], v[2])), thi = v3_max(v[0], v3_max(v[1], v[2]));
                 uint32_t c0[3], c1[3];
+                /* A grid over part of the scene takes the part of a
+                 * triangle's box inside it. */
+                if (!(tlo.x <= ls->hi.x && tlo.y <= ls->hi.y && tlo.z <= ls->hi.z && thi.x >= ls->lo.x &&
+                      thi.y >= ls->lo.y && thi.z >= ls->lo.z))
+                    continue;
+                tlo = v3_max(tlo, ls->lo);
+                thi = v3_min(thi, ls->hi);
                 if (!il_ls_cell_of(ls, tlo, c0) || !il_ls_cell_of(ls, thi, c1))
                     continue;
                 for (uint32_t z = c0[2]; z <= c1[2]; z++)
@@ -332,6 +340,15 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
 {
     memset(ls, 0, sizeof *ls);
     il_vec3 lo = scene->bounds_min, hi = scene->bounds_max;
+    /* A shaft's entry is the mean over all its lines: in a voxel that
+     * straddles a wall, the daylit lines outside are averaged with the
+     * room's, and a room on a large ground got voxels of 10 m, read 18%
+     * bright (docs/linespace.md, "Windows").  Where the portals' light is
+     * injected, the grid covers the interior the camera sees instead: the
+     * box of what it sees other than through the portals, whose faces lie
+     * in a box-shaped room's walls.  A point outside it traces on. */
+    if (scene->portal_light && st->portal_light && il_view_interior(scene, &lo, &hi))
+        ls->partial = true;
     il_vec3 ext = v3_sub(hi, lo);
     float longest = v3_max_comp(ext);
     if (!(longest > 0.0f) || !isfinite(longest))

@@ -30,6 +30,11 @@
  * with E = I cos/d^2, the thesis's term; for an area light E(x) = int Le
  * cos cos' / r^2 dA' comes out of the same sampling.
  *
+ * In a scene with portals and light from outside (docs/linespace.md,
+ * "Windows"), most paths start at the portals as the light coming in by
+ * them (methods/portal_light.h), and the lights' own paths end where they
+ * enter by one, deposited up to the crossing.
+ *
  * Deterministic for a seed: each path's random numbers are keyed by its
  * index, chunks of paths are traced in parallel into their own deposit
  * lists and added in chunk order, whatever the thread count. */
@@ -47,6 +52,8 @@
 #include "core/rng.h"
 #include "methods/light_emit.h"
 #include "methods/linespace/ls.h"
+#include "methods/portal_light.h"
+#include "methods/view_size.h"
 #include "scene/bsdf.h"
 #include "trace/trace.h"
 
@@ -118,24 +125,31 @@ static void resolve_slots(const il_linespace *ls, chunk *c)
 }
 
 static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth, uint64_t seed,
-                       uint64_t index, chunk *c)
+                       uint64_t index, const il_distrib1d *choice, chunk *c)
 {
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed ^ 0x4c53u, index), index);
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
-    /* The portals' light is photon mapping's alone (docs/photon-mapping.md,
-     * "Windows"): here it did not lower the error. */
     il_light_emission e;
-    if (!il_light_emit(s, u, NULL, &rng, depth, &e))
+    bool emitted = il_light_emit(s, u, choice, &rng, depth, &e);
+    c->rays += e.rays;
+    if (!emitted)
         return;
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
-    for (uint32_t bounces = 0;; bounces++) {
+    /* The portals' light from a surface outside has bounced there. */
+    for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
         il_hit hit;
         c->rays++;
         bool found = il_trace_closest(tr, &ray, &hit);
+        float t_end = found ? hit.t : INFINITY, t_cross;
+        /* Entering by a portal, the path ends there: the portals' light
+         * brings what it would bring in. */
+        bool stops = il_portal_light_stops(s, &e, seg, &ray, t_end, &t_cross);
+        if (stops)
+            t_end = t_cross;
         /* Segment `bounces` has scattered that many times: the first
          * (straight from the light) is direct light, which the sampling
          * pass takes by shadow rays. */
@@ -145,9 +159,9 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
             float mag = il_maxf(fabsf(ray.org.x), il_maxf(fabsf(ray.org.y), fabsf(ray.org.z)));
             float start_tol = 2.0f * (il_trace_epsilon(tr) + mag * 4.0f * FLT_EPSILON);
             deposit_ctx dc = {c, power};
-            il_ls_walk(ls, ray.org, ray.dir, found ? hit.t : INFINITY, start_tol, deposit_visit, &dc);
+            il_ls_walk(ls, ray.org, ray.dir, t_end, start_tol, deposit_visit, &dc);
         }
-        if (!found || bounces >= depth)
+        if (stops || !found || bounces >= depth)
             break;
         il_surface surf;
         il_scene_surface(s, hit.mesh, hit.prim, hit.b1, hit.b2, &surf);
@@ -269,6 +283,20 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         free(ch);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
+    /* The lights' choice when the paths are split at the portals: the
+     * sky's and the sun's power, which counts a disk the size of the whole
+     * scene, scaled to the part the camera sees, as photon mapping does
+     * (il_pm_portal_choice). */
+    il_distrib1d choice = {0};
+    if (scene->portal_light && st->portal_light) {
+        float outside = il_portal_light_outside(scene, il_view_size(scene));
+        if (il_portal_light_choice(scene, outside, &choice, err) != IL_OK) {
+            free(acc);
+            free(filled);
+            free(ch);
+            return IL_ERR_MEMORY;
+        }
+    }
     bool oom = false;
     uint64_t injected = 0;
     double t0 = seconds_now();
@@ -292,7 +320,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             uint64_t lo = (c0 + (uint64_t)k) * LS_CHUNK;
             uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
-                trace_path(scene, ls, st->inject_depth, seed, i, &c);
+                trace_path(scene, ls, st->inject_depth, seed, i, choice.n ? &choice : NULL, &c);
             resolve_slots(ls, &c);
             ch[k] = c;
         }
@@ -305,6 +333,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         injected = end < paths ? end : paths;
     }
     out->injected = injected;
+    il_distrib1d_free(&choice);
     for (uint64_t k = 0; k < round; k++)
         free(ch[k].d);
     free(ch);

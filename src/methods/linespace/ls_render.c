@@ -44,7 +44,7 @@
 #include "trace/trace.h"
 
 typedef struct ls_counts {
-    uint64_t lookups, hits, empty, occluded, coarse;
+    uint64_t lookups, hits, empty, occluded, coarse, outside;
 } ls_counts;
 
 typedef struct ls_method {
@@ -54,7 +54,7 @@ typedef struct ls_method {
     il_ls_test test;               /* which entries the occlusion test runs on */
     float blur_radius;             /* world units */
     bool prefetch;                 /* il_wave_wants_prefetch */
-    _Atomic uint64_t lookups, hits, empty, occluded, coarse;
+    _Atomic uint64_t lookups, hits, empty, occluded, coarse, outside;
 } ls_method;
 
 /* How likely a hit on material `mat` reads the Linespace rather than
@@ -221,7 +221,11 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
                 return LS_STOP;
             next = v3_mul(p->beta, bs.weight);
         }
-        if ((p->traced || !m->set.trace_first_bounce) && u[3].x < lookup_probability(m, mat)) {
+        /* Where the grid covers only the interior the camera sees, a
+         * point outside it has no Linespace: the path traces on there. */
+        bool outside = m->ls->partial && !il_ls_inside(m->ls, surf->p);
+        cnt->outside += outside;
+        if ((p->traced || !m->set.trace_first_bounce) && u[3].x < lookup_probability(m, mat) && !outside) {
             cnt->lookups++;
             p->x = surf->p;
             p->ng = surf->ng;
@@ -448,6 +452,7 @@ static void ls_tile(const void *method, const il_camera_pass_ctx *ctx, il_camera
     atomic_fetch_add(&m->empty, cnt.empty);
     atomic_fetch_add(&m->occluded, cnt.occluded);
     atomic_fetch_add(&m->coarse, cnt.coarse);
+    atomic_fetch_add(&m->outside, cnt.outside);
 }
 
 il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_desc *desc,
@@ -480,6 +485,11 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     st->grid[0] = ls.res[0];
     st->grid[1] = ls.res[1];
     st->grid[2] = ls.res[2];
+    for (int k = 0; k < 3; k++) {
+        st->grid_min[k] = v3_get(ls.lo, k);
+        st->grid_max[k] = v3_get(ls.hi, k);
+    }
+    st->interior = ls.partial;
     st->n = ls.n;
     st->voxels = ls.num_voxels;
     st->shafts = ls.num_stored;
@@ -517,6 +527,7 @@ il_status il_ls_render(const il_scene *scene, il_film *film, const il_render_des
     st->lookup_empty = atomic_load(&m->empty);
     st->lookup_occluded = atomic_load(&m->occluded);
     st->lookup_coarse = atomic_load(&m->coarse);
+    st->outside = atomic_load(&m->outside);
     il_ls_free(&ls);
     if (s != IL_OK)
         return s;

@@ -54,6 +54,7 @@ il_status il_ls_settings_resolve(const il_linespace_desc *d, uint32_t max_depth,
     out->solid_angle = !d->no_solid_angle;
     out->coarse = d->coarse;
     out->coarse_below = d->coarse_below ? d->coarse_below : 32u;
+    out->portal_light = !d->no_portal_light;
     out->n1 = d->glossy_n1 > 0.0f ? d->glossy_n1 : 10.0f;
     out->n2 = d->glossy_n2 > 0.0f ? d->glossy_n2 : 100.0f;
     if (out->n2 < out->n1)

@@ -70,7 +70,5 @@ il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, i
     memset(choice, 0, sizeof *choice);
     if (!scene->portal_light || !ps->portal_light)
         return IL_OK;
-    float diagonal = v3_length(v3_sub(scene->bounds_max, scene->bounds_min));
-    float outside = diagonal > 0.0f ? ps->size / diagonal : 1.0f;
-    return il_portal_light_choice(scene, outside * outside, choice, err);
+    return il_portal_light_choice(scene, il_portal_light_outside(scene, ps->size), choice, err);
 }
