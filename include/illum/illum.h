@@ -682,8 +682,7 @@ typedef struct il_photon_desc {
     uint32_t no_portal_light;  /* 0 (default): in a scene with portals and light from
                                   outside, most photons start at the portals as the
                                   light coming in by them (docs/photon-mapping.md,
-                                  "Windows"); nonzero: all leave the lights, as
-                                  without portals */
+                                  "Windows"); nonzero: all leave the lights */
     /* Optional, for display (the viewer's photon points): called once the
      * photons are traced (PHOTON: the global map, which 0, then the caustic
      * map, which 1; SPPM: every pass, which 2) with their positions, 3
@@ -856,8 +855,7 @@ typedef struct il_linespace_desc {
                                   from outside, most light paths start at the portals
                                   and the grid covers the interior the camera sees
                                   (docs/linespace.md, "Windows"); true: the grid over
-                                  the whole scene, all paths from the lights, as
-                                  without portals */
+                                  the whole scene, all paths from the lights */
     il_linespace_step_fn on_step; /* progress and stop of the injection; NULL: none
                                   (not called when split across processes) */
     void *on_step_user;

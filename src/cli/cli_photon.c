@@ -24,7 +24,7 @@ const char cli_photon_help[] =
     "                         max-depth - 1)\n"
     "  --portal-light on|off  in a scene with portals and light from outside, start\n"
     "                         most photons at the portals (default on; off: all\n"
-    "                         leave the lights, as without portals)\n"
+    "                         leave the lights)\n"
     "photon only:\n"
     "  --k N                  photons per kd-tree estimate, 1 to 100000 (default 100)\n"
     "  --photon-filter cone|epanechnikov\n"

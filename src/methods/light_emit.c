@@ -121,31 +121,30 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
     return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
 }
 
-bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS],
-                   const il_distrib1d *choice, il_pcg32 *rng, uint32_t max_depth,
-                   il_light_emission *out)
+bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], bool at_portals,
+                   il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
     if (s->num_lights == 0 || !s->light_cdf || !s->light_pmf)
         return false;
     il_vec2 u_pos = v2(u[1], u[2]), u_dir = v2(u[3], u[4]);
     float u_light = u[0], lights_share = 1.0f;
-    bool split = choice && s->portal_light;
+    bool split = at_portals && s->portal_light;
     out->split = split;
-    uint32_t li;
-    float pmf, u_rest;
     if (split) {
         const float share = IL_PORTAL_LIGHT_SHARE;
         if (u_light < share)
             return il_portal_light_emit(s, u_light / share, u_pos, u_dir, rng, max_depth, share, out);
         u_light = il_clampf((u_light - share) / (1.0f - share), 0.0f, 0x1.fffffep-1f);
         lights_share = 1.0f - share;
-        li = il_distrib1d_sample_discrete(choice, u_light, &pmf, &u_rest);
-    } else {
-        li = pick_light(s, u_light);
-        pmf = s->light_pmf[li];
-        u_rest = 0.0f;      /* unused: only a split path steers through the portals */
     }
+    /* The lights by the scene's table: their power, or in a scene with
+     * portals what they bring in by them (scene/lights.c). */
+    uint32_t li = pick_light(s, u_light);
+    float pmf = s->light_pmf[li];
+    /* u_light within the light's interval, for the sun's steering (only a
+     * split path steers through the portals). */
+    float u_rest = pmf > 0.0f ? il_clampf((u_light - s->light_cdf[li]) / pmf, 0.0f, 0x1.fffffep-1f) : 0.0f;
     const il_light *l = &s->lights[li];
     if (!(pmf > 0.0f))
         return false;

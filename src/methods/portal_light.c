@@ -44,7 +44,6 @@
 
 #include <float.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "core/sampler.h"
@@ -109,29 +108,6 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     out->dir = d;
     out->power = v3_scale(L, c * area / (pdf * share));
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
-}
-
-float il_portal_light_outside(const il_scene *s, float size)
-{
-    float diagonal = v3_length(v3_sub(s->bounds_max, s->bounds_min));
-    float outside = diagonal > 0.0f ? size / diagonal : 1.0f;
-    return outside * outside;
-}
-
-il_status il_portal_light_choice(const il_scene *s, float outside, il_distrib1d *choice,
-                                 il_error *err)
-{
-    float *w = il_malloc((s->num_lights ? s->num_lights : 1) * sizeof *w, err);
-    if (!w)
-        return IL_ERR_MEMORY;
-    for (uint32_t i = 0; i < s->num_lights; i++) {
-        il_light_kind k = s->lights[i].kind;
-        bool out = k == IL_LIGHTK_ENVIRONMENT || k == IL_LIGHTK_DIRECTIONAL;
-        w[i] = s->lights[i].power * (out ? outside : 1.0f);
-    }
-    il_status st = il_distrib1d_init(choice, w, s->num_lights, err);
-    free(w);
-    return st;
 }
 
 bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32_t seg,

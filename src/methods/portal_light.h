@@ -25,20 +25,6 @@
 bool il_portal_light_emit(const il_scene *scene, float u_choice, il_vec2 u_pos, il_vec2 u_dir,
                           il_pcg32 *rng, uint32_t max_depth, float share, il_light_emission *out);
 
-/* How the lights' own paths are chosen when the light paths are split:
- * by power (scene->lights[i].power), the environment's and the directional
- * lights' times `outside`.  Their power counts the disk of the scene's
- * bounding sphere, of which the camera sees a part: photon mapping passes
- * (its scene size / the bounding box's diagonal)^2 (methods/view_size.h),
- * so that a lamp in a room on a large ground is not drowned by the sky
- * over the ground.  With lights only outside (or outside = 1) the choice
- * is the scene's own.  Fails only when out of memory. */
-il_status il_portal_light_choice(const il_scene *scene, float outside, il_distrib1d *choice,
-                                 il_error *err);
-/* That `outside` for a scene whose camera sees a part of size `size`
- * (methods/view_size.h): (size / the bounding box's diagonal)^2. */
-float il_portal_light_outside(const il_scene *scene, float size);
-
 /* Whether light path e ends on its segment `seg` (0: the one leaving the
  * light), the ray up to t_end (INFINITY when it leaves the scene), because
  * it enters by a portal there: the portals' light holds what it would

@@ -26,19 +26,13 @@ static void add_light(il_scene *s, il_light_desc d)
     CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
 }
 
-/* One emission; in a scene with portals, the light paths split there and
- * the lights chosen by their own power (il_portal_light_choice, outside 1). */
+/* One emission; in a scene with portals, the light paths split there. */
 static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
 {
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    il_distrib1d choice = {0};
-    if (s->portal_light)
-        CHECK_OK(il_portal_light_choice(s, 1.0f, &choice, &g_err), &g_err);
-    bool ok = il_light_emit(s, u, s->portal_light ? &choice : NULL, rng, 8, e);
-    il_distrib1d_free(&choice);
-    return ok;
+    return il_light_emit(s, u, true, rng, 8, e);
 }
 
 /* Statistics of N photons. */
@@ -483,10 +477,11 @@ static void test_portal_light_scattered(void)
     il_scene_release(s);
 }
 
-/* The lights' choice for split paths (il_portal_light_choice): a lamp
- * inside and the sky, the sky's power scaled by `outside`: the lamp gets
- * its share of the lights' photons by the scaled powers, and each light's
- * photons still carry its own power on average. */
+/* The lights' share of split paths: a lamp inside and the sky.  The
+ * scene's table weighs the sky by what it brings in by the portal
+ * (scene/lights.c), not by its power over the scene's bounding disk: the
+ * lamp gets its share of the lights' photons by that table, and each
+ * light's photons still carry its own power on average. */
 static void test_portal_light_choice(void)
 {
     il_scene *s = new_scene();
@@ -496,9 +491,6 @@ static void test_portal_light_choice(void)
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0), .intensity = v3s(3.0f)});
     add_portal(s);
     commit(s);
-    const float outside = 0.01f;
-    il_distrib1d choice;
-    CHECK_OK(il_portal_light_choice(s, outside, &choice, &g_err), &g_err);
     double r = s->scene_radius, lamp_power = 4 * PI_D * 3.0, sky_power = 4 * PI_D * PI_D * r * r * 0.5;
     double lamp_flux = 0, sky_flux = 0;
     uint32_t lamp = 0, lights = 0;
@@ -508,7 +500,7 @@ static void test_portal_light_choice(void)
         for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
             u[k] = il_pcg32_float(&rng);
         il_light_emission e;
-        if (!il_light_emit(s, u, &choice, &rng, 8, &e) || e.portal)
+        if (!il_light_emit(s, u, true, &rng, 8, &e) || e.portal)
             continue;
         lights++;
         if (s->lights[e.light].kind == IL_LIGHTK_POINT) {
@@ -518,12 +510,16 @@ static void test_portal_light_choice(void)
             sky_flux += e.power.y;
         }
     }
-    /* The powers are luminances of these grey lights. */
-    double w_lamp = lamp_power, w_sky = sky_power * outside;
+    /* The powers are luminances of these grey lights; the sky weighs
+     * pi L A, A the portal's area. */
+    double w_lamp = lamp_power, w_sky = PI_D * 0.5 * PORTAL_AREA;
+    uint32_t li = s->lights[0].kind == IL_LIGHTK_POINT ? 0 : 1;
+    printf("lights' share: the lamp %.4f of the lights' photons, its table entry %.4f (by power %.4f)\n",
+           (double)lamp / lights, (double)s->light_pmf[li], lamp_power / (lamp_power + sky_power));
+    CHECK_REL(s->light_pmf[li], w_lamp / (w_lamp + w_sky), 1e-5);
     CHECK_NEAR((double)lamp / lights, w_lamp / (w_lamp + w_sky), 0.01);
     CHECK_REL(lamp_flux / N_PHOTONS, lamp_power, 0.02);
     CHECK_REL(sky_flux / N_PHOTONS, sky_power, 0.03);
-    il_distrib1d_free(&choice);
     il_scene_release(s);
 }
 

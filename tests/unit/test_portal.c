@@ -10,6 +10,9 @@
  *   the density il_environment_pdf_at gives the same direction, and
  *   estimates the irradiance pi L of a uniform sky without bias; the light
  *   table's environment pdf is the mixture's times its selection;
+ * - the light table's selection in a scene with portals: the sky by
+ *   pi L A, a sun by E sum(A |cos|), lamps by their power, and a sun in
+ *   the portals' plane still 5% of the total;
  * - il_scene_add_portal refuses NaN corners, slivers and a committed scene;
  * - JSON: "environment.portals" quads with a transform, "flip", errors. */
 #include "scene_build.h"
@@ -159,6 +162,48 @@ static void test_mixture(const il_scene *s)
     CHECK(il_environment_pdf_at(s, p, up) > 10.0f * il_environment_pdf(s, up));
 }
 
+/* portal_scene's floor, sky and portal (1.5 m^2, facing -y) with a point
+ * light of 0.5 W/sr (2 pi W) and a sun of irradiance 2 travelling along
+ * `sun`. */
+static il_scene *lit_portal_scene(il_vec3 sun)
+{
+    il_scene *s = new_scene();
+    add_quad(s, v3(0, -1, 0), v3(5, 0, 0), v3(0, 0, -5), 0);
+    il_environment_desc env = {.radiance = v3s(1.0f)};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    il_vec3 c[6] = {v3(-0.5f, 2, -0.75f), v3(0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f),
+                    v3(-0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f), v3(-0.5f, 2, 0.75f)};
+    CHECK_OK(il_scene_add_portal(s, c, 2, &g_err), &g_err);
+    il_light_desc lamp = {.type = IL_LIGHT_POINT, .position = v3(0, 0, 0), .intensity = v3s(0.5f)};
+    il_light_desc sn = {.type = IL_LIGHT_DIRECTIONAL, .direction = sun, .intensity = v3s(2.0f)};
+    CHECK_OK(il_scene_add_light(s, &lamp, &g_err), &g_err);
+    CHECK_OK(il_scene_add_light(s, &sn, &g_err), &g_err);
+    commit(s);
+    return s;
+}
+
+static void test_selection(void)
+{
+    il_scene *s = lit_portal_scene(v3(0.6f, -0.8f, 0.0f));
+    double sky = PI_D * 1.5, lamp = 2.0 * PI_D, sun = 2.0 * 1.5 * 0.8, total = sky + lamp + sun;
+    for (uint32_t i = 0; i < s->num_lights; i++) {
+        il_light_kind k = s->lights[i].kind;
+        double want = k == IL_LIGHTK_ENVIRONMENT ? sky : k == IL_LIGHTK_POINT ? lamp : sun;
+        printf("selection: light %u (kind %d) %.5f, want %.5f\n", i, (int)k, (double)s->light_pmf[i],
+               want / total);
+        CHECK_REL(s->light_pmf[i], want / total, 1e-5);
+    }
+    il_scene_release(s);
+    /* A sun in the portal's plane brings nothing in: it keeps 5% of the
+     * total, so that what it lights outside is still sampled. */
+    s = lit_portal_scene(v3(1.0f, 0.0f, 0.0f));
+    total = sky + lamp;
+    for (uint32_t i = 0; i < s->num_lights; i++)
+        if (s->lights[i].kind == IL_LIGHTK_DIRECTIONAL)
+            CHECK_REL(s->light_pmf[i], 0.05 * total / (1.05 * total), 1e-5);
+    il_scene_release(s);
+}
+
 static void test_bad_portals(void)
 {
     il_scene *s = new_scene();
@@ -256,6 +301,7 @@ int main(void)
     test_pdf_normalised(s);
     test_mixture(s);
     il_scene_release(s);
+    test_selection();
     test_bad_portals();
     test_json();
     return check_report();

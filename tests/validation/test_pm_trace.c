@@ -53,7 +53,7 @@ static record trace_all(const il_scene *s, uint64_t n, uint32_t max_depth, uint6
     r.max_y = -INFINITY;
     *rays = 0;
     for (uint64_t i = 0; i < n; i++)
-        *rays += il_pm_trace_photon(s, 42, i, max_depth, NULL, on_deposit, &r);
+        *rays += il_pm_trace_photon(s, 42, i, max_depth, false, on_deposit, &r);
     return r;
 }
 
@@ -68,7 +68,7 @@ static record trace_expect(const il_scene *s, uint64_t n, uint32_t max_depth, do
     r.expect = expect;
     *rays = 0;
     for (uint64_t i = 0; i < n; i++)
-        *rays += il_pm_trace_photon(s, 42, i, max_depth, NULL, on_deposit, &r);
+        *rays += il_pm_trace_photon(s, 42, i, max_depth, false, on_deposit, &r);
     return r;
 }
 
@@ -149,7 +149,7 @@ static void test_energy(void)
     r.inside = v3(0, 0, 0);
     uint64_t rays = 0;
     for (uint64_t i = 0; i < n; i++)
-        rays += il_pm_trace_photon(s, 42, i, 100000, NULL, on_deposit, &r);
+        rays += il_pm_trace_photon(s, 42, i, 100000, false, on_deposit, &r);
     for (int c = 0; c < 3; c++)
         CHECK_REL(r.power[c] / n, phi * rho[c] / (1 - rho[c]), 0.02);
     CHECK(r.caustic == 0);
@@ -175,7 +175,7 @@ static void test_energy(void)
     /* A depth cap of 2 bounces stores Phi (rho + rho^2). */
     memset(&r, 0, sizeof r);
     for (uint64_t i = 0; i < n; i++)
-        il_pm_trace_photon(s, 42, i, 2, NULL, on_deposit, &r);
+        il_pm_trace_photon(s, 42, i, 2, false, on_deposit, &r);
     for (int c = 0; c < 3; c++)
         CHECK_REL(r.power[c] / n, phi * (rho[c] + rho[c] * rho[c]), 0.02);
     il_scene_release(s);

@@ -53,7 +53,6 @@
 #include "methods/light_emit.h"
 #include "methods/linespace/ls.h"
 #include "methods/portal_light.h"
-#include "methods/view_size.h"
 #include "scene/bsdf.h"
 #include "trace/trace.h"
 
@@ -125,14 +124,14 @@ static void resolve_slots(const il_linespace *ls, chunk *c)
 }
 
 static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth, uint64_t seed,
-                       uint64_t index, const il_distrib1d *choice, chunk *c)
+                       uint64_t index, bool at_portals, chunk *c)
 {
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed ^ 0x4c53u, index), index);
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    bool emitted = il_light_emit(s, u, choice, &rng, depth, &e);
+    bool emitted = il_light_emit(s, u, at_portals, &rng, depth, &e);
     c->rays += e.rays;
     if (!emitted)
         return;
@@ -283,20 +282,6 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         free(ch);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
-    /* The lights' choice when the paths are split at the portals: the
-     * sky's and the sun's power, which counts a disk the size of the whole
-     * scene, scaled to the part the camera sees, as photon mapping does
-     * (il_pm_portal_choice). */
-    il_distrib1d choice = {0};
-    if (scene->portal_light && st->portal_light) {
-        float outside = il_portal_light_outside(scene, il_view_size(scene));
-        if (il_portal_light_choice(scene, outside, &choice, err) != IL_OK) {
-            free(acc);
-            free(filled);
-            free(ch);
-            return IL_ERR_MEMORY;
-        }
-    }
     bool oom = false;
     uint64_t injected = 0;
     double t0 = seconds_now();
@@ -320,7 +305,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             uint64_t lo = (c0 + (uint64_t)k) * LS_CHUNK;
             uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
-                trace_path(scene, ls, st->inject_depth, seed, i, choice.n ? &choice : NULL, &c);
+                trace_path(scene, ls, st->inject_depth, seed, i, st->portal_light, &c);
             resolve_slots(ls, &c);
             ch[k] = c;
         }
@@ -333,7 +318,6 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         injected = end < paths ? end : paths;
     }
     out->injected = injected;
-    il_distrib1d_free(&choice);
     for (uint64_t k = 0; k < round; k++)
         free(ch[k].d);
     free(ch);

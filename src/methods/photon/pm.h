@@ -200,15 +200,13 @@ typedef struct il_pm_deposit {
 
 typedef void (*il_pm_deposit_fn)(void *user, const il_pm_deposit *d);
 
-/* Emits photon `index` (the lights chosen by power, scene->light_pmf; with
- * portal_choice, the light paths split at the portals and the lights chosen
- * by it, methods/portal_light.h) and follows it for at most max_depth
- * bounces, Russian roulette by the surface's albedo; calls deposit at
- * every stored hit.  Its path depends only on (seed, index).  Returns the
- * rays it cast. */
+/* Emits photon `index` (the lights chosen by scene->light_pmf; with
+ * at_portals, the light paths split at the portals, methods/portal_light.h)
+ * and follows it for at most max_depth bounces, Russian roulette by the
+ * surface's albedo; calls deposit at every stored hit.  Its path depends
+ * only on (seed, index).  Returns the rays it cast. */
 uint64_t il_pm_trace_photon(const il_scene *scene, uint64_t seed, uint64_t index,
-                            uint32_t max_depth, const il_distrib1d *portal_choice,
-                            il_pm_deposit_fn deposit, void *user);
+                            uint32_t max_depth, bool at_portals, il_pm_deposit_fn deposit, void *user);
 
 /* il_photon_desc.on_step during PHOTON's set-up (pm_watch.c). */
 typedef struct il_pm_watch {
@@ -230,9 +228,8 @@ typedef struct il_pm_trace_desc {
     int threads;               /* 0: all cores */
     bool split;                /* true: caustic photons to *caustic, the rest to
                                   *global; false: all to *global (SPPM) */
-    const il_distrib1d *portal_choice; /* not NULL: split the light paths at the
-                                  scene's portals, the lights chosen by it
-                                  (il_portal_light_choice) */
+    bool at_portals;           /* split the light paths at the scene's portals
+                                  (methods/portal_light.h) */
     il_pm_watch *watch;        /* reports after every round of chunks, and may stop
                                   the tracing there; NULL: none */
 } il_pm_trace_desc;
@@ -291,12 +288,6 @@ typedef struct il_pm_settings {
 } il_pm_settings;
 il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d, uint32_t max_depth,
                                  bool sppm, il_pm_settings *out, il_error *err);
-/* The lights' choice for light paths split at the scene's portals
- * (il_portal_light_choice, with the environment and the sun scaled to the
- * settings' size); *choice left zeroed, the paths not split, in a scene
- * without them or when the settings turn the portals' light off. */
-il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, il_distrib1d *choice,
-                              il_error *err);
 
 /* ------------------------------------- split across processes (pm_distrib.c) */
 

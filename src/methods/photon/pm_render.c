@@ -144,20 +144,15 @@ static il_status build_maps(const il_scene *scene, const il_render_desc *desc,
         watch.user = desc->photon->on_step_user;
     }
     if (ps->max_photon_depth > 0) {
-        il_distrib1d choice;
-        il_status s = il_pm_portal_choice(scene, ps, &choice, err);
-        if (s != IL_OK)
-            return s;
         il_pm_trace_desc td = {.first = 0,
                                .count = ps->photons,
                                .seed = desc->seed,
                                .max_depth = ps->max_photon_depth,
                                .threads = desc->threads,
                                .split = true,
-                               .portal_choice = choice.cdf ? &choice : NULL,
+                               .at_portals = ps->portal_light,
                                .watch = &watch};
-        s = il_pm_trace_split(scene, &td, desc->distrib, &ph, err);
-        il_distrib1d_free(&choice);
+        il_status s = il_pm_trace_split(scene, &td, desc->distrib, &ph, err);
         if (s != IL_OK)
             return s;
     }

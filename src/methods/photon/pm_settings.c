@@ -5,7 +5,6 @@
 
 #include "core/error.h"
 #include "methods/photon/pm.h"
-#include "methods/portal_light.h"
 #include "methods/view_size.h"
 
 #define PM_MAX_PHOTONS 10000000000ull /* 10^10: 200 GB of photons, surely a typo beyond */
@@ -62,13 +61,4 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
     uint32_t depth = max_depth ? max_depth : 8u;
     out->max_photon_depth = d->max_photon_depth ? d->max_photon_depth : depth - 1u;
     return IL_OK;
-}
-
-il_status il_pm_portal_choice(const il_scene *scene, const il_pm_settings *ps, il_distrib1d *choice,
-                              il_error *err)
-{
-    memset(choice, 0, sizeof *choice);
-    if (!scene->portal_light || !ps->portal_light)
-        return IL_OK;
-    return il_portal_light_choice(scene, il_portal_light_outside(scene, ps->size), choice, err);
 }

@@ -57,7 +57,6 @@ typedef struct sppm {
     int threads;
     const il_distrib *distrib; /* split across processes: pixel rows y with
                                   y mod size == rank are this process's */
-    il_distrib1d portal_choice; /* il_pm_portal_choice (zeroed: no portals' light) */
 } sppm;
 
 /* Whether pixel row y is this process's (every row in a single process). */
@@ -178,7 +177,7 @@ static il_status photon_pass(sppm *s, uint32_t pass, float r_max, il_photon_stat
                            .max_depth = s->ps.max_photon_depth,
                            .threads = s->threads,
                            .split = false,
-                           .portal_choice = s->portal_choice.cdf ? &s->portal_choice : NULL};
+                           .at_portals = s->ps.portal_light};
     il_status status = s->ps.max_photon_depth > 0
                            ? il_pm_trace_split(s->scene, &td, s->distrib, &ph, err)
                            : IL_OK;
@@ -266,10 +265,6 @@ il_status il_sppm_render(const il_scene *scene, il_film *film, const il_render_d
     s.px = il_calloc(s.num_px, sizeof *s.px, err);
     if (!s.px)
         return IL_ERR_MEMORY;
-    if ((st = il_pm_portal_choice(scene, &s.ps, &s.portal_choice, err)) != IL_OK) {
-        free(s.px);
-        return st;
-    }
     for (size_t i = 0; i < s.num_px; i++)
         s.px[i].r = s.ps.initial_radius;
 
@@ -312,7 +307,6 @@ il_status il_sppm_render(const il_scene *scene, il_film *film, const il_render_d
     stats->spp = done;
     stats->rays = rays + ps->photon_rays;
     stats->seconds = omp_get_wtime() - t0;
-    il_distrib1d_free(&s.portal_choice);
     free(s.px);
     return st;
 }

@@ -22,8 +22,7 @@
 #define IL_PM_CHUNK 4096u
 
 static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t index, uint32_t max_depth,
-                                 const il_distrib1d *portal_choice,
-                                 il_pm_deposit_fn deposit, void *user)
+                                 bool at_portals, il_pm_deposit_fn deposit, void *user)
 {
     /* The photon's own stream: keyed by (seed, index) only. */
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed, index), index);
@@ -31,7 +30,7 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    if (!il_light_emit(s, u, portal_choice, &rng, max_depth, &e))
+    if (!il_light_emit(s, u, at_portals, &rng, max_depth, &e))
         return e.rays;
 
     const il_tracer *tr = s->tracer;
@@ -82,9 +81,9 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
 }
 
 uint64_t il_pm_trace_photon(const il_scene *scene, uint64_t seed, uint64_t index, uint32_t max_depth,
-                            const il_distrib1d *portal_choice, il_pm_deposit_fn deposit, void *user)
+                            bool at_portals, il_pm_deposit_fn deposit, void *user)
 {
-    return trace_one(scene, seed, index, max_depth, portal_choice, deposit, user);
+    return trace_one(scene, seed, index, max_depth, at_portals, deposit, user);
 }
 
 /* ------------------------------------------------------- parallel tracing */
@@ -205,7 +204,7 @@ il_status il_pm_trace(const il_scene *scene, const il_pm_trace_desc *desc, il_pm
             uint64_t hi = lo + IL_PM_CHUNK < desc->count ? lo + IL_PM_CHUNK : desc->count;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
                 c.rays += trace_one(scene, desc->seed, desc->first + i, desc->max_depth,
-                                    desc->portal_choice, chunk_deposit, &c);
+                                    desc->at_portals, chunk_deposit, &c);
             ctx[k] = c;
         }
         for (int64_t k = 0; k < n && !oom; k++) {
