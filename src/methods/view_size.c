@@ -28,10 +28,16 @@ static int compare_floats(const void *a, const void *b)
 }
 
 /* The points a GRID x GRID grid of camera rays hits, their coordinates in
- * axis[0..2]; with inside_only, not those seen through a portal from its
- * lit side (outside the interior the portals open).  Their number. */
+ * axis[0..2] (allocated here, freed by the caller, also when it returns
+ * 0); with inside_only, not those seen through a portal from its lit side
+ * (outside the interior the portals open).  Their number; 0 when out of
+ * memory. */
 static uint32_t camera_hits(const il_scene *s, bool inside_only, float *axis[3])
 {
+    for (int c = 0; c < 3; c++)
+        axis[c] = malloc(GRID * GRID * sizeof(float));
+    if (!axis[0] || !axis[1] || !axis[2])
+        return 0;
     il_camera cam;
     il_camera_init(&cam, &s->camera.desc, GRID, GRID);
     uint32_t n = 0;
@@ -62,9 +68,7 @@ float il_view_size(const il_scene *s)
     if (!s->tracer)
         return diagonal;
     float *axis[3];
-    for (int c = 0; c < 3; c++)
-        axis[c] = malloc(GRID * GRID * sizeof(float));
-    uint32_t n = axis[0] && axis[1] && axis[2] ? camera_hits(s, false, axis) : 0;
+    uint32_t n = camera_hits(s, false, axis);
     float seen = diagonal;
     if (n >= GRID) {   /* a view of mostly sky keeps the box */
         float extent[3];
@@ -87,9 +91,7 @@ bool il_view_interior(const il_scene *s, il_vec3 *lo, il_vec3 *hi)
     if (s->num_portals == 0 || !s->tracer || !(diagonal > 0.0f))
         return false;
     float *axis[3];
-    for (int c = 0; c < 3; c++)
-        axis[c] = malloc(GRID * GRID * sizeof(float));
-    uint32_t n = axis[0] && axis[1] && axis[2] ? camera_hits(s, true, axis) : 0;
+    uint32_t n = camera_hits(s, true, axis);
     bool smaller = false;
     if (n >= GRID) {
         il_vec3 a = v3(axis[0][0], axis[1][0], axis[2][0]), b = a;

@@ -25,8 +25,8 @@
 
 /* A floor under a uniform sky of radiance 1 and one portal: the rectangle
  * of half-sides 0.5 (x) and 0.75 (z) centred at (0, 2, 0), lighting the
- * side below it (its front faces -y). */
-static il_scene *portal_scene(void)
+ * side below it (its front faces -y).  Not committed. */
+static il_scene *floor_sky_portal(void)
 {
     il_scene *s = new_scene();
     add_quad(s, v3(0, -1, 0), v3(5, 0, 0), v3(0, 0, -5), 0);
@@ -36,6 +36,12 @@ static il_scene *portal_scene(void)
     il_vec3 c[6] = {v3(-0.5f, 2, -0.75f), v3(0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f),
                     v3(-0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f), v3(-0.5f, 2, 0.75f)};
     CHECK_OK(il_scene_add_portal(s, c, 2, &g_err), &g_err);
+    return s;
+}
+
+static il_scene *portal_scene(void)
+{
+    il_scene *s = floor_sky_portal();
     commit(s);
     return s;
 }
@@ -167,13 +173,7 @@ static void test_mixture(const il_scene *s)
  * `sun`. */
 static il_scene *lit_portal_scene(il_vec3 sun)
 {
-    il_scene *s = new_scene();
-    add_quad(s, v3(0, -1, 0), v3(5, 0, 0), v3(0, 0, -5), 0);
-    il_environment_desc env = {.radiance = v3s(1.0f)};
-    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
-    il_vec3 c[6] = {v3(-0.5f, 2, -0.75f), v3(0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f),
-                    v3(-0.5f, 2, -0.75f), v3(0.5f, 2, 0.75f), v3(-0.5f, 2, 0.75f)};
-    CHECK_OK(il_scene_add_portal(s, c, 2, &g_err), &g_err);
+    il_scene *s = floor_sky_portal();
     il_light_desc lamp = {.type = IL_LIGHT_POINT, .position = v3(0, 0, 0), .intensity = v3s(0.5f)};
     il_light_desc sn = {.type = IL_LIGHT_DIRECTIONAL, .direction = sun, .intensity = v3s(2.0f)};
     CHECK_OK(il_scene_add_light(s, &lamp, &g_err), &g_err);
