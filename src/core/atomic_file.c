@@ -1,6 +1,8 @@
 #include "core/atomic_file.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -9,24 +11,46 @@
 #include "core/error.h"
 
 /* The temporary name is the output's path, ".tmp-" and the six characters
- * that mkstemp(3) requires to be 'X' and replaces with a unique suffix. */
+ * that mkstemp(3) requires to be 'X' and replaces with a unique suffix.
+ * Where that name is too long for the file system (an output name of
+ * 245 or more characters) it is ".illum-tmp-" and the six in the output's
+ * folder. */
 #define IL_TMP_PREFIX ".tmp-"
+#define IL_TMP_SHORT ".illum-tmp-"
 #define IL_MKSTEMP_CHARS 6
+
+/* Fills tmp (room for strlen(path) + strlen(IL_TMP_SHORT) + 8) with the
+ * temporary name's template: path + IL_TMP_PREFIX, or with `in_folder`,
+ * path's folder + IL_TMP_SHORT; then the six 'X'. */
+static void tmp_template(char *tmp, const char *path, bool in_folder)
+{
+    size_t len = strlen(path);
+    const char *suffix = IL_TMP_PREFIX;
+    if (in_folder) {
+        const char *slash = strrchr(path, '/');
+        len = slash ? (size_t)(slash - path) + 1 : 0;
+        suffix = IL_TMP_SHORT;
+    }
+    memcpy(tmp, path, len);
+    memcpy(tmp + len, suffix, strlen(suffix));
+    len += strlen(suffix);
+    memset(tmp + len, 'X', IL_MKSTEMP_CHARS);
+    tmp[len + IL_MKSTEMP_CHARS] = '\0';
+}
 
 il_status il_atomic_open(il_atomic_file *af, const char *path, il_error *err)
 {
     af->f = NULL;
     af->path = path;
-    size_t len = strlen(path);
-    const size_t prefix = sizeof IL_TMP_PREFIX - 1;
-    af->tmp = il_malloc(len + prefix + IL_MKSTEMP_CHARS + 1, err);
+    af->tmp = il_malloc(strlen(path) + sizeof IL_TMP_SHORT + IL_MKSTEMP_CHARS + 1, err);
     if (!af->tmp)
         return IL_ERR_MEMORY;
-    memcpy(af->tmp, path, len);
-    memcpy(af->tmp + len, IL_TMP_PREFIX, prefix);
-    memset(af->tmp + len + prefix, 'X', IL_MKSTEMP_CHARS);
-    af->tmp[len + prefix + IL_MKSTEMP_CHARS] = '\0';
+    tmp_template(af->tmp, path, false);
     int fd = mkstemp(af->tmp);
+    if (fd < 0 && errno == ENAMETOOLONG) {
+        tmp_template(af->tmp, path, true);
+        fd = mkstemp(af->tmp);
+    }
     if (fd < 0) {
         il_status st = il_fail(err, IL_ERR_IO, "%s: cannot create file: %s", path, strerror(errno));
         free(af->tmp);
@@ -69,6 +93,12 @@ il_status il_atomic_check(const char *path, il_error *err)
 {
     if (!path[0])
         return il_fail(err, IL_ERR_IO, "an output file name is empty");
+    /* The rename at the end would fail, after all the work. */
+    const char *slash = strrchr(path, '/');
+    size_t name = strlen(slash ? slash + 1 : path);
+    if (name > NAME_MAX)
+        return il_fail(err, IL_ERR_IO, "%s: the file name is too long (%zu characters; at most %d)", path,
+                       name, NAME_MAX);
     struct stat sb;
     bool exists = stat(path, &sb) == 0;
     if (exists && S_ISDIR(sb.st_mode))

@@ -10,7 +10,8 @@
 typedef struct il_atomic_file {
     FILE *f;            /* write here */
     const char *path;   /* the target */
-    char *tmp;          /* path + ".tmp-" + six random characters (mkstemp) */
+    char *tmp;          /* path + ".tmp-" + six random characters (mkstemp), or in
+                           path's folder ".illum-tmp-" + six for a long name */
 } il_atomic_file;
 
 /* Creates the temporary file (mode 0644) and opens it for binary writing. */

@@ -143,7 +143,17 @@ expect_stderr "empty" "empty output name"
 expect_no_file j.png "empty output name"
 expect_exit 1 "bake stats into a missing folder" -- "$ILLUM" bake cornell -o k.ply --stats no/such/dir/s.json
 expect_no_file k.ply "bake stats into a missing folder"
-if ls -a | grep -q '\.tmp-'; then fail "an output check left a temporary file"; fi
+# A name of 250 characters is written (its temporary name would be too
+# long beside it, so it gets a short one in the folder); one of 300 is
+# refused before the work.
+long=$(printf 'l%.0s' $(seq 1 246)).png
+expect_exit 0 "250-character output name" -- "$ILLUM" render cornell --width 8 --height 8 --spp 1 -q -o "$long"
+expect_file "$long" "250-character output name"
+rm -f "$long"
+expect_exit 1 "300-character output name" -- "$ILLUM" render cornell --time 1000000 -q \
+    -o "$(printf 'm%.0s' $(seq 1 296)).png"
+expect_stderr "the file name is too long (300 characters; at most 255)" "300-character output name"
+if ls -a | grep -q -e '\.tmp-' -e '\.illum-tmp-'; then fail "an output check left a temporary file"; fi
 
 # Zero where the library would take a default is a mistake when written
 # (found by fuzzing): a scene's camera fov 0 or up [0,0,0], a spot's angle
