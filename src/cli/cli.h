@@ -448,7 +448,8 @@ typedef struct cli_sensor_place {
     cli_plane plane;
     double area[4], margin, spacing;
 } cli_sensor_place;
-/* Option a with value v, when it is one of those (*ok: v was good). */
+/* Option a with value v, when it is one of those (*ok: v was good, and
+ * --plane, --area or --points not given before). */
 bool cli_sensor_place_option(const char *a, const char *v, cli_sensor_place *p, bool *ok);
 /* The grid of --plane over --area, inset by the margin, or over the
  * scene's bounds (p->area is then filled in), as cli_plane_grid. */

@@ -145,6 +145,14 @@ bool cli_parse_area(const char *opt, const char *s, double area[4])
 
 bool cli_sensor_place_option(const char *a, const char *v, cli_sensor_place *p, bool *ok)
 {
+    /* One place a run: a second --plane, --area or --points would replace
+     * the first without a word. */
+    if ((!strcmp(a, "--plane") && p->has_plane) || (!strcmp(a, "--area") && p->has_area) ||
+        (!strcmp(a, "--points") && p->points)) {
+        cli_error("%s: given twice (one a run; run the command again for another)", a);
+        *ok = false;
+        return true;
+    }
     if (!strcmp(a, "--plane")) {
         *ok = cli_parse_plane(a, v, &p->plane);
         p->has_plane = true;

@@ -138,6 +138,11 @@ static int parse_options(int argc, char **argv, options *o)
         } else if (!strcmp(a, "--stats")) {
             o->stats = v;
         } else if (!strcmp(a, "--surface")) {
+            if (o->surface) {
+                cli_error("--surface: given twice (one a run; name several meshes with a shared "
+                          "name or material instead)");
+                return IL_EXIT_BAD_INPUT;
+            }
             o->surface = v;
             if (!v[0]) {
                 cli_error("--surface: an empty name matches no mesh (give a mesh's or material's name)");

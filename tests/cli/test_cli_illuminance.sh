@@ -73,6 +73,13 @@ expect_stderr "huge.csv:2: expected" "points: 1e39"
 expect_no_file bad.csv "points: bad numbers"
 expect_exit 1 "an area of 2e308" -- "$ILLUM" illuminance lamp.json --plane y=0 --area -1e308,-1e308,1e308,1e308 -o bad.csv
 expect_stderr "out of range (at most 1e15 a side" "an area of 2e308"
+# A second --plane, --area, --points or --surface would replace the first.
+expect_exit 1 "--plane twice" -- "$ILLUM" illuminance lamp.json --plane y=0 --plane y=1 -o bad.csv
+expect_stderr "--plane: given twice" "--plane twice"
+expect_exit 1 "--area twice" -- "$ILLUM" illuminance lamp.json --plane y=0 --area 0,0,1,1 --area 0,0,2,2 -o bad.csv
+expect_exit 1 "--surface twice" -- "$ILLUM" illuminance lamp.json --surface a --surface b -o bad.csv
+expect_stderr "--surface: given twice" "--surface twice"
+expect_no_file bad.csv "options given twice"
 
 # The same readings with one thread and two (the Cornell box: noisy paths).
 expect_exit 0 "1 thread" -- "$ILLUM" illuminance cornell --plane y=0.1 --samples 64 --threads 1 -q -o t1.csv

@@ -75,6 +75,8 @@ expect_exit 2 "unknown option" -- "$ILLUM" sunhours court.json --plane y=0 --sam
 expect_exit 1 "no offset" -- "$ILLUM" sunhours court.json --plane y=0 --from 2026-03-20T00:00 --latitude 0 --longitude 0
 expect_stderr "UTC offset" "no offset"
 expect_exit 1 "step 0" -- "$ILLUM" sunhours court.json --plane y=0 "${day[@]}" --step 0
+expect_exit 1 "--plane twice" -- "$ILLUM" sunhours court.json --plane y=0 --plane y=1 "${day[@]}"
+expect_stderr "--plane: given twice" "--plane twice"
 expect_exit 1 "latitude 95" -- "$ILLUM" sunhours court.json --plane y=0 --from 2026-03-20T00:00Z --latitude 95 --longitude 0
 expect_exit 1 "not csv" -- "$ILLUM" sunhours court.json --plane y=0 "${day[@]}" -o hours.png
 # A period running past 2100 (found by fuzzing: it failed mid-count without
