@@ -110,6 +110,11 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
 }
 
+bool il_portal_light_wanted(const il_scene *s)
+{
+    return s->portal_light && il_portal_area_seen(s, s->camera.desc.position) > 0.0f;
+}
+
 bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32_t seg,
                            const il_ray *ray, float t_end, float *t_cross)
 {

@@ -15,6 +15,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/rng.h"
+#include "core/sampling.h"
 #include "scene/camera.h"
 #include "scene/portal.h"
 #include "trace/trace.h"
@@ -27,19 +29,37 @@ static int compare_floats(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Whether the point p, reached along the unit dir after t, lies beyond a
+ * portal from where the ray started: the way back enters by it. */
+static bool through_portal(const il_scene *s, il_vec3 p, il_vec3 dir, float t)
+{
+    return il_portal_entered(s, p, v3_neg(dir), t, 1e-4f * t, NULL);
+}
+
+static void add_point(float *axis[3], uint32_t *n, il_vec3 p)
+{
+    axis[0][*n] = p.x;
+    axis[1][*n] = p.y;
+    axis[2][*n] = p.z;
+    ++*n;
+}
+
 /* The points a GRID x GRID grid of camera rays hits, their coordinates in
  * axis[0..2] (allocated here, freed by the caller, also when it returns
- * 0); with inside_only, not those seen through a portal from its lit side
- * (outside the interior the portals open).  Their number; 0 when out of
- * memory. */
-static uint32_t camera_hits(const il_scene *s, bool inside_only, float *axis[3])
+ * 0).  With `interior`, not those seen through a portal from its lit side
+ * (outside the interior the portals open), and from each point one
+ * cosine-distributed ray more, whose hit (unless through a portal) adds
+ * the room around what the camera sees: a close view of a wall still gets
+ * the room.  Their number; 0 when out of memory. */
+static uint32_t camera_hits(const il_scene *s, bool interior, float *axis[3])
 {
     for (int c = 0; c < 3; c++)
-        axis[c] = malloc(GRID * GRID * sizeof(float));
+        axis[c] = malloc(2 * GRID * GRID * sizeof(float));
     if (!axis[0] || !axis[1] || !axis[2])
         return 0;
     il_camera cam;
     il_camera_init(&cam, &s->camera.desc, GRID, GRID);
+    il_pcg32 rng = il_pcg32_seed(0x766965u, 0);
     uint32_t n = 0;
     for (uint32_t y = 0; y < GRID; y++)
         for (uint32_t x = 0; x < GRID; x++) {
@@ -49,13 +69,25 @@ static uint32_t camera_hits(const il_scene *s, bool inside_only, float *axis[3])
             if (!il_trace_closest(s->tracer, &ray, &hit))
                 continue;
             il_vec3 p = v3_fma(ray.org, ray.dir, hit.t);
-            /* Seen through a portal: the way back to the camera enters by it. */
-            if (inside_only && il_portal_entered(s, p, v3_neg(ray.dir), hit.t, 1e-4f * hit.t, NULL))
+            if (interior && through_portal(s, p, ray.dir, hit.t))
                 continue;
-            axis[0][n] = p.x;
-            axis[1][n] = p.y;
-            axis[2][n] = p.z;
-            n++;
+            add_point(axis, &n, p);
+            if (!interior)
+                continue;
+            il_vec3 q, ng;
+            il_scene_point(s, hit.mesh, hit.prim, hit.b1, hit.b2, &q, &ng);
+            if (v3_dot(ng, ray.dir) > 0.0f)
+                ng = v3_neg(ng);
+            il_frame f = il_frame_from_normal(ng);
+            il_vec2 u = v2(il_pcg32_float(&rng), il_pcg32_float(&rng));
+            il_vec3 d = il_frame_to_world(&f, il_sample_cosine_hemisphere(u));
+            il_ray bounce = {.org = il_offset_origin(s->tracer, p, ng, d), .tmin = 0.0f, .dir = d,
+                             .tmax = INFINITY};
+            if (il_trace_closest(s->tracer, &bounce, &hit)) {
+                il_vec3 p2 = v3_fma(bounce.org, d, hit.t);
+                if (!through_portal(s, p2, d, hit.t))
+                    add_point(axis, &n, p2);
+            }
         }
     return n;
 }

@@ -13,10 +13,11 @@
  * camera rays hits.  1 for an empty box. */
 float il_view_size(const il_scene *scene);
 
-/* In a scene with portals, the interior they open seen by the camera: the
- * box of the points a 32 x 32 grid of camera rays hits, leaving out those
- * seen through a portal from its lit side, and true, when its diagonal is
- * less than half the bounding box's.  Else the bounding box, and false. */
+/* In a scene with portals, the interior they open around what the camera
+ * sees: the box of the points a 32 x 32 grid of camera rays hits and of
+ * those one diffuse bounce from each reaches, leaving out any seen through
+ * a portal from its lit side, and true, when its diagonal is less than
+ * half the bounding box's.  Else the bounding box, and false. */
 bool il_view_interior(const il_scene *scene, il_vec3 *lo, il_vec3 *hi);
 
 #endif

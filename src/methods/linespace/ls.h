@@ -184,6 +184,8 @@ uint32_t il_ls_coarse_shaft(uint32_t n, uint32_t shaft);
 
 typedef struct il_linespace {
     il_vec3 lo, hi;              /* the grid's box */
+    bool portal_light;           /* the portals' light is injected (st->portal_light
+                                    and il_portal_light_wanted) */
     bool partial;                /* it covers only part of the scene (il_view_interior):
                                     a point outside has no Linespace */
     il_vec3 vsize;               /* one voxel */

@@ -29,6 +29,7 @@
 
 #include "core/error.h"
 #include "methods/linespace/ls.h"
+#include "methods/portal_light.h"
 #include "methods/view_size.h"
 
 typedef struct hull {
@@ -347,7 +348,8 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
      * injected, the grid covers the interior the camera sees instead: the
      * box of what it sees other than through the portals, whose faces lie
      * in a box-shaped room's walls.  A point outside it traces on. */
-    if (scene->portal_light && st->portal_light && il_view_interior(scene, &lo, &hi))
+    ls->portal_light = st->portal_light && il_portal_light_wanted(scene);
+    if (ls->portal_light && il_view_interior(scene, &lo, &hi))
         ls->partial = true;
     il_vec3 ext = v3_sub(hi, lo);
     float longest = v3_max_comp(ext);

@@ -305,7 +305,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             uint64_t lo = (c0 + (uint64_t)k) * LS_CHUNK;
             uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
-                trace_path(scene, ls, st->inject_depth, seed, i, st->portal_light, &c);
+                trace_path(scene, ls, st->inject_depth, seed, i, ls->portal_light, &c);
             resolve_slots(ls, &c);
             ch[k] = c;
         }

@@ -284,7 +284,8 @@ typedef struct il_pm_settings {
     uint32_t max_photon_depth;
     float size;                /* the scene's size the radii are fractions of */
     bool portal_light;         /* split the light paths at the portals (not
-                                  il_photon_desc.no_portal_light) */
+                                  il_photon_desc.no_portal_light, and
+                                  il_portal_light_wanted) */
 } il_pm_settings;
 il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d, uint32_t max_depth,
                                  bool sppm, il_pm_settings *out, il_error *err);

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "methods/photon/pm.h"
+#include "methods/portal_light.h"
 #include "methods/view_size.h"
 
 #define PM_MAX_PHOTONS 10000000000ull /* 10^10: 200 GB of photons, surely a typo beyond */
@@ -47,7 +48,7 @@ il_status il_pm_settings_resolve(const il_scene *scene, const il_photon_desc *d,
 
     float diagonal = il_view_size(scene);
     out->size = diagonal;
-    out->portal_light = !d->no_portal_light;
+    out->portal_light = !d->no_portal_light && il_portal_light_wanted(scene);
     out->photons = d->photons ? d->photons : (sppm ? 250000u : 1000000u);
     out->lookup.lookup = d->lookup;
     out->lookup.k = d->k ? d->k : 100u;
