@@ -345,9 +345,10 @@ il_status il_ls_build(const il_scene *scene, const il_ls_settings *st, int threa
      * straddles a wall, the daylit lines outside are averaged with the
      * room's, and a room on a large ground got voxels of 10 m, read 18%
      * bright (docs/linespace.md, "Windows").  Where the portals' light is
-     * injected, the grid covers the interior the camera sees instead: the
-     * box of what it sees other than through the portals, whose faces lie
-     * in a box-shaped room's walls.  A point outside it traces on. */
+     * injected (a camera inside), the grid covers the interior around what
+     * the camera sees instead (il_view_interior: what it sees other than
+     * through the portals, and one bounce from there), whose faces lie in
+     * a box-shaped room's walls.  A point outside it traces on. */
     ls->portal_light = st->portal_light && il_portal_light_wanted(scene);
     if (ls->portal_light && il_view_interior(scene, &lo, &hi))
         ls->partial = true;
