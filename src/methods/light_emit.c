@@ -121,7 +121,7 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
     return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
 }
 
-bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], bool at_portals,
+bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
                    il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
@@ -129,10 +129,10 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], bool at
         return false;
     il_vec2 u_pos = v2(u[1], u[2]), u_dir = v2(u[3], u[4]);
     float u_light = u[0], lights_share = 1.0f;
-    bool split = at_portals && s->portal_light;
+    bool split = portal_share > 0.0f && portal_share < 1.0f && s->portal_light;
     out->split = split;
     if (split) {
-        const float share = IL_PORTAL_LIGHT_SHARE;
+        const float share = portal_share;
         if (u_light < share)
             return il_portal_light_emit(s, u_light / share, u_pos, u_dir, rng, max_depth, share, out);
         u_light = il_clampf((u_light - share) / (1.0f - share), 0.0f, 0x1.fffffep-1f);

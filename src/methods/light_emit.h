@@ -40,15 +40,16 @@ typedef struct il_light_emission {
 /* Picks a light by the scene's table with u[0] (scene->light_pmf and
  * light_cdf: by power, or in a scene with portals by what each brings in
  * by them), a point on it with u[1], u[2] and a direction with u[3], u[4];
- * each u in [0,1).  With at_portals in a scene with portals and light from
- * outside (scene->portal_light), u[0] first chooses between the lights and
- * the portals' light (methods/portal_light.h), which draws from rng and
+ * each u in [0,1).  With portal_share in (0, 1) in a scene with portals
+ * and light from outside (scene->portal_light), u[0] first chooses between
+ * the lights and the portals' light (methods/portal_light.h; that share of
+ * the paths start there), which draws from rng and
  * looks outside with a path-traced sample of max_depth bounces, and a
  * directional light's paths are partly drawn through the portals
  * (light_emit.c, emit_origin); out->split says that the caller must stop
  * the lights' paths where il_portal_light_stops says.  False when the
  * sample carries no power. */
-bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], bool at_portals,
+bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
                    il_pcg32 *rng, uint32_t max_depth, il_light_emission *out);
 
 /* One bounce of a light path at surface surf with BSDF b, seen from wo:

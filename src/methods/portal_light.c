@@ -110,6 +110,12 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
 }
 
+float il_portal_light_balanced_share(const il_scene *s)
+{
+    float env = s->environment_light != IL_NO_LIGHT ? s->light_pmf[s->environment_light] : 0.0f;
+    return il_clampf(env, 1.0f - IL_PORTAL_LIGHT_SHARE, IL_PORTAL_LIGHT_SHARE);
+}
+
 bool il_portal_light_wanted(const il_scene *s)
 {
     return s->portal_light && il_portal_area_seen(s, s->camera.desc.position) > 0.0f;

@@ -32,7 +32,7 @@ static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_light_emit(s, u, true, rng, 8, e);
+    return il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE, rng, 8, e);
 }
 
 /* Statistics of N photons. */
@@ -500,7 +500,7 @@ static void test_portal_light_choice(void)
         for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
             u[k] = il_pcg32_float(&rng);
         il_light_emission e;
-        if (!il_light_emit(s, u, true, &rng, 8, &e) || e.portal)
+        if (!il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE, &rng, 8, &e) || e.portal)
             continue;
         lights++;
         if (s->lights[e.light].kind == IL_LIGHTK_POINT) {

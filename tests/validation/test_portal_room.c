@@ -332,7 +332,7 @@ static void test_photon(void)
  * samples, 12,000 times too bright, made every method read the room 9%
  * dark at these samples, the path tracer too).  Photon mapping, SPPM and
  * Linespace come within 2% of the path tracer (measured -0.1%, -0.1% and
- * -0.1%). */
+ * +0.2%). */
 static void test_lamp(void)
 {
     il_scene *s = NULL;

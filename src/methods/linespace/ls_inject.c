@@ -124,14 +124,14 @@ static void resolve_slots(const il_linespace *ls, chunk *c)
 }
 
 static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth, uint64_t seed,
-                       uint64_t index, bool at_portals, chunk *c)
+                       uint64_t index, float portal_share, chunk *c)
 {
     il_pcg32 rng = il_pcg32_seed(il_hash_combine(seed ^ 0x4c53u, index), index);
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    bool emitted = il_light_emit(s, u, at_portals, &rng, depth, &e);
+    bool emitted = il_light_emit(s, u, portal_share, &rng, depth, &e);
     c->rays += e.rays;
     if (!emitted)
         return;
@@ -282,6 +282,8 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         free(ch);
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
+    /* The share of the paths that start at the portals (0: none). */
+    const float share = ls->portal_light ? il_portal_light_balanced_share(scene) : 0.0f;
     bool oom = false;
     uint64_t injected = 0;
     double t0 = seconds_now();
@@ -305,7 +307,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
             uint64_t lo = (c0 + (uint64_t)k) * LS_CHUNK;
             uint64_t hi = lo + LS_CHUNK < paths ? lo + LS_CHUNK : paths;
             for (uint64_t i = lo; i < hi && !c.oom; i++)
-                trace_path(scene, ls, st->inject_depth, seed, i, ls->portal_light, &c);
+                trace_path(scene, ls, st->inject_depth, seed, i, share, &c);
             resolve_slots(ls, &c);
             ch[k] = c;
         }
