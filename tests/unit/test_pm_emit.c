@@ -362,6 +362,8 @@ static void test_portal_light_environment(void)
     add_portal(s);
     commit(s);
     CHECK(s->portal_light);
+    /* Linespace's share from the portals: the sky alone, its most. */
+    CHECK(il_portal_light_balanced_share(s) == IL_PORTAL_LIGHT_SHARE);
     double r = s->scene_radius, portal_flux = 0, lights_flux = 0;
     uint32_t portal = 0, bad = 0, entering = 0, stopped = 0, failed = 0;
     il_pcg32 rng = il_pcg32_seed(21, 3);
@@ -517,6 +519,9 @@ static void test_portal_light_choice(void)
     printf("lights' share: the lamp %.4f of the lights' photons, its table entry %.4f (by power %.4f)\n",
            (double)lamp / lights, (double)s->light_pmf[li], lamp_power / (lamp_power + sky_power));
     CHECK_REL(s->light_pmf[li], w_lamp / (w_lamp + w_sky), 1e-5);
+    /* The lamp outweighs the sky 16 to 1: Linespace's share from the
+     * portals is its least. */
+    CHECK(il_portal_light_balanced_share(s) == 1.0f - IL_PORTAL_LIGHT_SHARE);
     CHECK_NEAR((double)lamp / lights, w_lamp / (w_lamp + w_sky), 0.01);
     CHECK_REL(lamp_flux / N_PHOTONS, lamp_power, 0.02);
     CHECK_REL(sky_flux / N_PHOTONS, sky_power, 0.03);
