@@ -144,7 +144,8 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float p
     float pmf = s->light_pmf[li];
     /* u_light within the light's interval, for the sun's steering (only a
      * split path steers through the portals). */
-    float u_rest = pmf > 0.0f ? il_clampf((u_light - s->light_cdf[li]) / pmf, 0.0f, 0x1.fffffep-1f) : 0.0f;
+    float u_rest = split && pmf > 0.0f ? il_clampf((u_light - s->light_cdf[li]) / pmf, 0.0f, 0x1.fffffep-1f)
+                                       : 0.0f;
     const il_light *l = &s->lights[li];
     if (!(pmf > 0.0f))
         return false;

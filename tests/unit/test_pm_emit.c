@@ -26,6 +26,16 @@ static void add_light(il_scene *s, il_light_desc d)
     CHECK_OK(il_scene_add_light(s, &d, &g_err), &g_err);
 }
 
+/* The ground under a uniform sky of radiance L; not committed. */
+static il_scene *ground_under_sky(il_vec3 radiance)
+{
+    il_scene *s = new_scene();
+    add_ground(s);
+    il_environment_desc env = {.radiance = radiance};
+    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    return s;
+}
+
 /* One emission; in a scene with portals, the light paths split there. */
 static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
 {
@@ -271,10 +281,7 @@ static void test_directional_disc(void)
  * flux through a sphere of radius R/2 is L 4 pi pi (R/2)^2: a quarter. */
 static void test_environment(void)
 {
-    il_scene *s = new_scene();
-    add_ground(s);
-    il_environment_desc env = {.radiance = v3(0.5f, 1, 2)};
-    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    il_scene *s = ground_under_sky(v3(0.5f, 1, 2));
     commit(s);
     double r = s->scene_radius;
     stats st = run(s, v3(0, 1, 0), -1.0f, s->scene_center, (float)(0.5 * r));
@@ -355,10 +362,7 @@ static double portal_crossing(const il_light_emission *e)
  * of the photons still carries the environment's whole power. */
 static void test_portal_light_environment(void)
 {
-    il_scene *s = new_scene();
-    add_ground(s);
-    il_environment_desc env = {.radiance = v3(0.5f, 1, 2)};
-    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    il_scene *s = ground_under_sky(v3(0.5f, 1, 2));
     add_portal(s);
     commit(s);
     CHECK(s->portal_light);
@@ -486,10 +490,7 @@ static void test_portal_light_scattered(void)
  * light's photons still carry its own power on average. */
 static void test_portal_light_choice(void)
 {
-    il_scene *s = new_scene();
-    add_ground(s);
-    il_environment_desc env = {.radiance = v3s(0.5f)};
-    CHECK_OK(il_scene_set_environment(s, &env, &g_err), &g_err);
+    il_scene *s = ground_under_sky(v3s(0.5f));
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0), .intensity = v3s(3.0f)});
     add_portal(s);
     commit(s);

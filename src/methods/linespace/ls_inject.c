@@ -31,9 +31,10 @@
  * cos cos' / r^2 dA' comes out of the same sampling.
  *
  * In a scene with portals and light from outside (docs/linespace.md,
- * "Windows"), most paths start at the portals as the light coming in by
- * them (methods/portal_light.h), and the lights' own paths end where they
- * enter by one, deposited up to the crossing.
+ * "Windows"), a share of the paths start at the portals as the light
+ * coming in by them (methods/portal_light.h, il_portal_light_balanced_share),
+ * and the lights' own paths end where they enter by one, deposited up to
+ * the crossing.
  *
  * Deterministic for a seed: each path's random numbers are keyed by its
  * index, chunks of paths are traced in parallel into their own deposit
