@@ -3,7 +3,8 @@
  * the analytic radiance rho/pi * P/A with both filters (their
  * normalisations, Jensen 2001 7.2.2) and both structures; photons on a
  * perpendicular wall at a corner, on the back of a thin wall, or arriving
- * from below the surface add nothing; a fixed-radius estimate is the same
+ * from below the surface, or on a parallel surface just under it add
+ * nothing, while those on a facet or a sphere next to the query count; a fixed-radius estimate is the same
  * on a kd-tree and on a grid; an empty map gives zero; the Lambertian
  * shortcut (one product with rho/pi) equals the general per-photon BSDF
  * loop, including photons from below and bent shading normals. */
@@ -78,6 +79,17 @@ static void add_back(il_photon *out, size_t n, il_pcg32 *r)
     for (size_t i = 0; i < n; i++) {
         il_vec3 p = v3(HALF * (2.0f * il_pcg32_float(r) - 1.0f), HALF * (2.0f * il_pcg32_float(r) - 1.0f), 0.0f);
         out[i] = il_photon_pack(p, v3s(1000.0f), upper_dir(r, v3(0, 0, -1)), v3(0, 0, -1));
+    }
+}
+/* The ground 1 cm under the floor, facing up as the floor does (a floor
+ * inside a wall without thickness, the ground outside it): rejected by the
+ * disc, 1 cm being more than IL_PM_DISC_THICKNESS of either search's
+ * radius here (grid 0.05; the kd-tree's 100 nearest lie within about 0.05). */
+static void add_under(il_photon *out, size_t n, il_pcg32 *r)
+{
+    for (size_t i = 0; i < n; i++) {
+        il_vec3 p = v3(HALF * (2.0f * il_pcg32_float(r) - 1.0f), HALF * (2.0f * il_pcg32_float(r) - 1.0f), -0.01f);
+        out[i] = il_photon_pack(p, v3s(1000.0f), upper_dir(r, v3(0, 0, 1)), v3(0, 0, 1));
     }
 }
 /* Facing up but arriving from below (f = 0 for a reflective surface). */
@@ -308,14 +320,57 @@ static void test_normal_test(void)
     CHECK(agree > 1000);
 }
 
+/* il_pm_on_surface against the query x = 0 with normal +z and a search
+ * radius r: photons on the query's plane count at any distance; on a
+ * parallel plane they count only within IL_PM_DISC_THICKNESS * r of it;
+ * photons on a plane through a point of the query's plane, turned by up to
+ * the normal test's 25.8 degrees (a tessellated curve's next facet), and on
+ * a sphere touching the plane at x (a smooth curve), count out to r. */
+static void test_on_surface(void)
+{
+    const float r = 0.2f;
+    il_vec3 n = v3(0, 0, 1), x = v3s(0.0f);
+    il_pcg32 rng = il_pcg32_seed(13, 1);
+    int wrong = 0;
+    for (int i = 0; i < 2000; i++) {
+        float phi = 2.0f * IL_PI * il_pcg32_float(&rng), d = r * sqrtf(il_pcg32_float(&rng));
+        il_vec3 u = v3(cosf(phi), sinf(phi), 0.0f);
+        il_photon flat = il_photon_pack(v3_scale(u, d), v3s(1.0f), n, n);
+        il_photon near = il_photon_pack(v3(u.x * d, u.y * d, -0.05f * r), v3s(1.0f), n, n);
+        il_photon far = il_photon_pack(v3(u.x * d, u.y * d, -0.2f * r), v3s(1.0f), n, n);
+        wrong += !il_pm_on_surface(&flat, n, x, r) + !il_pm_on_surface(&near, n, x, r) +
+                 il_pm_on_surface(&far, n, x, r);
+        /* a facet turned by theta about the axis perpendicular to u, through
+         * a point a of the query's plane on u's line (|a| < d) */
+        float theta = 0.45f * il_pcg32_float(&rng), a = d * il_pcg32_float(&rng);
+        il_vec3 along = v3(u.x * cosf(theta), u.y * cosf(theta), sinf(theta));
+        il_vec3 fn = v3(-u.x * sinf(theta), -u.y * sinf(theta), cosf(theta));
+        il_vec3 q = v3_add(v3_scale(u, a), v3_scale(along, d - a));
+        il_photon facet = il_photon_pack(q, v3s(1.0f), fn, fn);
+        /* a sphere of radius R on the plane at x, the photon at arc length d */
+        float t = fmaxf(theta, 1e-3f), R = d / t;
+        il_vec3 sn = v3(-u.x * sinf(t), -u.y * sinf(t), cosf(t));
+        il_photon ball = il_photon_pack(v3(u.x * R * sinf(t), u.y * R * sinf(t), R * (1.0f - cosf(t))), v3s(1.0f),
+                                        sn, sn);
+        if (v3_dot(il_photon_normal(&facet), n) > IL_PM_NORMAL_COS + 0.01f)
+            wrong += !il_pm_on_surface(&facet, n, x, r);
+        if (v3_dot(il_photon_normal(&ball), n) > IL_PM_NORMAL_COS + 0.01f)
+            wrong += !il_pm_on_surface(&ball, n, x, r);
+    }
+    printf("disc test: %d of 10000 photons wrongly in or out\n", wrong);
+    CHECK(wrong == 0);
+}
+
 int main(void)
 {
+    test_on_surface();
     test_normal_test();
     test_lambert_shortcut();
     test_uniform_plane();
     test_rejected(add_wall, "on a perpendicular wall");
     test_rejected(add_back, "on the back of a thin wall");
     test_rejected(add_below, "arriving from below");
+    test_rejected(add_under, "on the ground just under the floor");
     test_empty();
     return check_report();
 }

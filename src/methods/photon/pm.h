@@ -145,7 +145,9 @@ void il_pm_scratch_free(il_pm_scratch *s);
  * (Jensen 2001, eq. 7.6, with the filter of 7.2): sum over the photons of
  * f(wo, wi_p) * power_p * w_p / (norm * pi * r^2).  n is the query's
  * geometric normal turned to wo's side; photons whose stored normal
- * disagrees with it (a corner, the other side of a thin wall) are skipped.
+ * disagrees with it (a corner, the other side of a thin wall) or that lie
+ * off its tangent plane (a parallel surface just behind it) are skipped
+ * (il_pm_on_surface in pm_internal.h).
  * Returns zero for an empty map.  Fails only when out of memory. */
 il_status il_pm_estimate(const il_pm_map *map, const il_pm_lookup *q, const il_bsdf *bsdf,
                          il_vec3 p, il_vec3 n, il_vec3 wo, il_pm_scratch *scratch, il_vec3 *out,
@@ -153,6 +155,10 @@ il_status il_pm_estimate(const il_pm_map *map, const il_pm_lookup *q, const il_b
 
 /* The cosine a photon's normal must have with the query's to count. */
 #define IL_PM_NORMAL_COS 0.9f
+/* How far off the query's tangent plane a photon may lie, as a share of the
+ * search radius, beyond what the surface's bend explains
+ * (il_pm_on_surface in pm_internal.h). */
+#define IL_PM_DISC_THICKNESS 0.1f
 
 /* Irradiance at p on a surface facing n (Jensen 2001, eq. 7.6 with f = 1):
  * sum over the photons passing the normal test and arriving from n's side

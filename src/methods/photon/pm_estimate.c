@@ -77,13 +77,14 @@ static il_status gather(const il_pm_map *map, const il_pm_lookup *q, il_vec3 p,
  * 1 / (norm pi r^2) (the header's kernels). */
 typedef struct pm_filter {
     bool cone;
-    float inv_r2, inv_kr, scale;
+    float r, inv_r2, inv_kr, scale;
 } pm_filter;
 
 static pm_filter filter_for(il_photon_filter filter, float r2, float power_scale)
 {
     pm_filter f;
     f.cone = filter == IL_PHOTON_CONE;
+    f.r = sqrtf(r2);
     f.inv_r2 = 1.0f / r2;
     f.inv_kr = f.cone ? 1.0f / (CONE_K * sqrtf(r2)) : 0.0f;
     float norm = f.cone ? 1.0f - 2.0f / (3.0f * CONE_K) : 0.5f;
@@ -108,11 +109,13 @@ static il_status gather_filtered(const il_pm_map *map, const il_pm_lookup *q, il
     return st;
 }
 
-/* The seed's fix for light leaking round corners and through thin walls:
- * only photons that landed on a surface facing the same way. */
-static inline bool normal_agrees(const il_photon *ph, il_vec3 n)
+/* The seed's fix for light leaking round corners and through thin walls,
+ * only photons that landed on a surface facing the same way, and the disc
+ * that leaves out those on a parallel surface just behind the query's
+ * (il_pm_on_surface). */
+static inline bool on_surface(const il_photon *ph, il_vec3 n, il_vec3 x, const pm_filter *flt)
 {
-    return il_pm_normal_agrees(ph, n);
+    return il_pm_on_surface(ph, n, x, flt->r);
 }
 
 /* The grazing limit of scene/bsdf.c (IL_BSDF_EPS there). */
@@ -124,8 +127,9 @@ static inline bool normal_agrees(const il_photon *ph, il_vec3 n)
  * term for term (scene/bsdf.c): wo and wi on the same side of the
  * geometric normal, neither grazing in the shading frame flipped to wo's
  * side.  So the answer equals the general loop's up to float rounding. */
-static il_vec3 lambert_sum(const il_pm_map *map, const il_bsdf *bsdf, il_vec3 n, il_vec3 wo,
-                           const il_pm_neighbour *nb, uint32_t found, const pm_filter *flt)
+static il_vec3 lambert_sum(const il_pm_map *map, const il_bsdf *bsdf, il_vec3 p, il_vec3 n,
+                           il_vec3 wo, const il_pm_neighbour *nb, uint32_t found,
+                           const pm_filter *flt)
 {
     float zo = v3_dot(wo, bsdf->frame.n);
     float side = zo < 0.0f ? -1.0f : 1.0f;
@@ -135,7 +139,7 @@ static il_vec3 lambert_sum(const il_pm_map *map, const il_bsdf *bsdf, il_vec3 n,
     il_vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < found; i++) {
         const il_photon *ph = &map->photons[nb[i].index];
-        if (!normal_agrees(ph, n))
+        if (!on_surface(ph, n, p, flt))
             continue;
         il_vec3 wi = il_photon_dir(ph);
         if (!(go * v3_dot(wi, bsdf->ng) > 0.0f) || !(side * v3_dot(wi, bsdf->frame.n) > LAMBERT_EPS))
@@ -157,13 +161,13 @@ il_status il_pm_estimate(const il_pm_map *map, const il_pm_lookup *q, const il_b
     if (st != IL_OK || found == 0)
         return st;
     if (bsdf->type == IL_MATERIAL_DIFFUSE) {
-        *out = v3_scale(lambert_sum(map, bsdf, n, wo, nb, found, &flt), flt.scale);
+        *out = v3_scale(lambert_sum(map, bsdf, p, n, wo, nb, found, &flt), flt.scale);
         return IL_OK;
     }
     il_vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < found; i++) {
         const il_photon *ph = &map->photons[nb[i].index];
-        if (!normal_agrees(ph, n))
+        if (!on_surface(ph, n, p, &flt))
             continue;
         il_vec3 f = il_bsdf_eval(bsdf, wo, il_photon_dir(ph), NULL);
         if (v3_is_zero(f))
@@ -187,7 +191,7 @@ il_status il_pm_irradiance_estimate(const il_pm_map *map, const il_pm_lookup *q,
     il_vec3 sum = v3s(0.0f);
     for (uint32_t i = 0; i < found; i++) {
         const il_photon *ph = &map->photons[nb[i].index];
-        if (!normal_agrees(ph, n) || !(v3_dot(il_photon_dir(ph), n) > 0.0f))
+        if (!on_surface(ph, n, p, &flt) || !(v3_dot(il_photon_dir(ph), n) > 0.0f))
             continue;
         sum = v3_fma(sum, il_photon_power(ph), filter_weight(&flt, nb[i].d2));
     }

@@ -22,11 +22,9 @@ static inline void il_pm_set_axis(il_photon *ph, unsigned axis)
     ph->normal = (uint16_t)((ph->normal & IL_PM_NORMAL_MASK) | (axis << IL_PM_AXIS_SHIFT));
 }
 
-/* The normal test of the estimates, v3_dot(il_photon_normal(ph), n) >=
- * IL_PM_NORMAL_COS for a unit n, without normalising the decoded normal:
- * the 7+7-bit octahedral decode of pm_photon.c (Cigolle et al. 2014, 3.1)
- * gives v, and dot(v, n) >= c |v| is tested squared. */
-static inline bool il_pm_normal_agrees(const il_photon *ph, il_vec3 n)
+/* The photon's normal as the unnormalised v of the 7+7-bit octahedral
+ * decode of pm_photon.c (Cigolle et al. 2014, 3.1). */
+static inline il_vec3 il_pm_normal_raw(const il_photon *ph)
 {
     const float inv = 1.0f / 63.0f;
     float x = (float)((int)(ph->normal & 127u) - 63) * inv;
@@ -37,8 +35,43 @@ static inline bool il_pm_normal_agrees(const il_photon *ph, il_vec3 n)
         x = (1.0f - fabsf(y)) * (ox >= 0.0f ? 1.0f : -1.0f);
         y = (1.0f - fabsf(ox)) * (y >= 0.0f ? 1.0f : -1.0f);
     }
-    float d = x * n.x + y * n.y + z * n.z;
-    return d >= 0.0f && d * d >= IL_PM_NORMAL_COS * IL_PM_NORMAL_COS * (x * x + y * y + z * z);
+    return (il_vec3){x, y, z};
+}
+
+/* The normal test of the estimates, v3_dot(il_photon_normal(ph), n) >=
+ * IL_PM_NORMAL_COS for a unit n, without normalising the decoded normal:
+ * dot(v, n) >= c |v| is tested squared. */
+static inline bool il_pm_normal_agrees(const il_photon *ph, il_vec3 n)
+{
+    il_vec3 v = il_pm_normal_raw(ph);
+    float d = v.x * n.x + v.y * n.y + v.z * n.z;
+    return d >= 0.0f && d * d >= IL_PM_NORMAL_COS * IL_PM_NORMAL_COS * (v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+/* Whether a photon found within radius r of x lies on the query's surface
+ * (unit normal n there): its normal agrees (il_pm_normal_agrees), and it
+ * lies no farther off the tangent plane at x than the turn of its normal
+ * allows, plus IL_PM_DISC_THICKNESS * r.  This compresses the search
+ * sphere along the normal into a disc (Jensen 2001, ch. 7), so photons on
+ * a parallel surface just behind the query's (the ground a few
+ * centimetres under a floor, outside a wall without thickness) do not
+ * count.  The
+ * turn: a photon at distance d on a plane whose normal is turned by theta
+ * from n, through a point of the query's plane, lies at most d sin(theta)
+ * off that plane, which covers a tessellated curve's facets as well as a
+ * smooth curve (d theta / 2 off its tangent plane); the thickness also
+ * covers the degree or so the normal's 14-bit code may be off by. */
+static inline bool il_pm_on_surface(const il_photon *ph, il_vec3 n, il_vec3 x, float r)
+{
+    il_vec3 v = il_pm_normal_raw(ph);
+    float vv = v.x * v.x + v.y * v.y + v.z * v.z;
+    float d = v.x * n.x + v.y * n.y + v.z * n.z;
+    if (!(d >= 0.0f && d * d >= IL_PM_NORMAL_COS * IL_PM_NORMAL_COS * vv))
+        return false;
+    float ox = ph->p[0] - x.x, oy = ph->p[1] - x.y, oz = ph->p[2] - x.z;
+    float beyond = fabsf(ox * n.x + oy * n.y + oz * n.z) - IL_PM_DISC_THICKNESS * r;
+    float sin2_turn = 1.0f - d * d / vv;
+    return beyond <= 0.0f || beyond * beyond <= sin2_turn * (ox * ox + oy * oy + oz * oz);
 }
 
 /* Squared distance from q to the photon.  Every structure uses this one

@@ -33,6 +33,7 @@
 #include "methods/camera_pass.h"
 #include "methods/distrib.h"
 #include "methods/photon/pm.h"
+#include "methods/photon/pm_internal.h"
 #include "scene/direct.h"
 #include "scene/lights.h"
 #include "trace/trace.h"
@@ -129,7 +130,7 @@ static il_status collect(const il_pm_map *map, sppm_pixel *p, float alpha, il_pm
     uint32_t m = 0;
     for (uint32_t k = 0; k < buf->count; k++) {
         const il_photon *ph = &map->photons[buf->items[k].index];
-        if (v3_dot(il_photon_normal(ph), p->vp.n) < IL_PM_NORMAL_COS)
+        if (!il_pm_on_surface(ph, p->vp.n, p->vp.s.p, p->r))
             continue;
         float pdf_unused;
         il_vec3 f = il_bsdf_eval(&p->vp.bsdf, p->vp.wo, il_photon_dir(ph), &pdf_unused);
