@@ -8,8 +8,8 @@
  * still reach it after a bounce outside, off the ground.  A path tracer
  * finds the window from inside (scene/portal.h); light paths start
  * outside.  So in a scene with portals and light from outside (the
- * environment or a directional light), a share IL_PORTAL_LIGHT_SHARE of
- * the light paths start at the portals instead: a uniform point x of their
+ * environment or a directional light), a share of the light paths
+ * (il_portal_light_share) start at the portals instead: a uniform point x of their
  * area A, a direction d into their lit side, and the power of the radiance
  * arriving at x from outside,
  *
@@ -110,10 +110,10 @@ bool il_portal_light_emit(const il_scene *s, float u_choice, il_vec2 u_pos, il_v
     return !v3_is_zero(out->power) && v3_is_finite(out->power);
 }
 
-float il_portal_light_balanced_share(const il_scene *s)
+float il_portal_light_share(const il_scene *s)
 {
     float env = s->environment_light != IL_NO_LIGHT ? s->light_pmf[s->environment_light] : 0.0f;
-    return il_clampf(env, 1.0f - IL_PORTAL_LIGHT_SHARE, IL_PORTAL_LIGHT_SHARE);
+    return il_clampf(env, 1.0f - IL_PORTAL_LIGHT_SHARE_MAX, IL_PORTAL_LIGHT_SHARE_MAX);
 }
 
 bool il_portal_light_wanted(const il_scene *s)

@@ -13,21 +13,22 @@
 #include "scene/scene.h"
 #include "trace/trace.h"
 
-/* The share of the light paths that start at the portals, in a scene where
- * scene->portal_light is set (photon mapping and SPPM). */
-#define IL_PORTAL_LIGHT_SHARE 0.8f
+/* The most and (1 - it) the least share of the light paths that start at
+ * the portals, in a scene where scene->portal_light is set. */
+#define IL_PORTAL_LIGHT_SHARE_MAX 0.8f
 
-/* The share by the scene's light table (Linespace's injection): the
- * environment's weight there, what the sky brings in by the portals
+/* The share of the light paths of photon mapping, SPPM and Linespace's
+ * injection that start at the portals: the environment's weight in the
+ * scene's light table, what the sky brings in by the portals
  * (scene/lights.c), against the lights' (a sun through a window, lamps
  * inside), whose own paths bring their light in; within
- * [1 - IL_PORTAL_LIGHT_SHARE, IL_PORTAL_LIGHT_SHARE].  In the window room
- * under a sun (0.2 instead of 0.8) Linespace's error fell from 0.061 to
- * 0.020, with a lamp (0.46) from 0.0086 to 0.0055.  Photon mapping keeps
- * IL_PORTAL_LIGHT_SHARE: more of the lights' photons land outside, where
- * some beside a wall without thickness leak into the room's estimates
- * (docs/photon-mapping.md, "Windows"). */
-float il_portal_light_balanced_share(const il_scene *scene);
+ * [1 - IL_PORTAL_LIGHT_SHARE_MAX, IL_PORTAL_LIGHT_SHARE_MAX].  In the
+ * window room under a sun (0.2 instead of 0.8) Linespace's error fell from
+ * 0.061 to 0.020, photon mapping's from 0.043 to 0.019; with a lamp (0.46)
+ * from 0.0086 to 0.0055 and from 0.011 to 0.0065 (docs/photon-mapping.md,
+ * "Windows": photon mapping could take it only once its search left out
+ * the photons on the ground beside a wall without thickness). */
+float il_portal_light_share(const il_scene *scene);
 
 /* A light path from a uniform point of the portals into their lit side,
  * carrying what arrives there from outside (portal_light.c).  u_choice,

@@ -42,7 +42,7 @@ static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE, rng, 8, e);
+    return il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE_MAX, rng, 8, e);
 }
 
 /* Statistics of N photons. */
@@ -367,7 +367,7 @@ static void test_portal_light_environment(void)
     commit(s);
     CHECK(s->portal_light);
     /* Linespace's share from the portals: the sky alone, its most. */
-    CHECK(il_portal_light_balanced_share(s) == IL_PORTAL_LIGHT_SHARE);
+    CHECK(il_portal_light_share(s) == IL_PORTAL_LIGHT_SHARE_MAX);
     double r = s->scene_radius, portal_flux = 0, lights_flux = 0;
     uint32_t portal = 0, bad = 0, entering = 0, stopped = 0, failed = 0;
     il_pcg32 rng = il_pcg32_seed(21, 3);
@@ -405,7 +405,7 @@ static void test_portal_light_environment(void)
     CHECK(bad == 0);
     CHECK(failed < N_PHOTONS / 1000);      /* grazing draws and misses of the map */
     CHECK(entering > 0 && stopped == entering);
-    CHECK_NEAR((double)portal / N_PHOTONS, IL_PORTAL_LIGHT_SHARE, 0.004);
+    CHECK_NEAR((double)portal / N_PHOTONS, IL_PORTAL_LIGHT_SHARE_MAX, 0.004);
     CHECK_REL(portal_flux / N_PHOTONS, 1.0 * PI_D * PORTAL_AREA, 0.01);
     CHECK_REL(lights_flux / N_PHOTONS, 4 * PI_D * PI_D * r * r, 0.02);
     il_scene_release(s);
@@ -442,7 +442,7 @@ static void test_portal_directional(void)
         stopped_direct += il_portal_light_stops(s, &e, 0, &ray, t_end, NULL);
         stopped_after += il_portal_light_stops(s, &e, 1, &ray, t_end, NULL);
     }
-    double lights_share = 1.0 - IL_PORTAL_LIGHT_SHARE;
+    double lights_share = 1.0 - IL_PORTAL_LIGHT_SHARE_MAX;
     CHECK_NEAR((double)lights / N_PHOTONS, lights_share, 0.004);
     /* IL_PORTAL_SHARE of them aimed at the portal, and a few more from the disk. */
     CHECK((double)crossing / lights > IL_PORTAL_SHARE && (double)crossing / lights < IL_PORTAL_SHARE + 0.01);
@@ -503,7 +503,7 @@ static void test_portal_light_choice(void)
         for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
             u[k] = il_pcg32_float(&rng);
         il_light_emission e;
-        if (!il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE, &rng, 8, &e) || e.portal)
+        if (!il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE_MAX, &rng, 8, &e) || e.portal)
             continue;
         lights++;
         if (s->lights[e.light].kind == IL_LIGHTK_POINT) {
@@ -522,7 +522,7 @@ static void test_portal_light_choice(void)
     CHECK_REL(s->light_pmf[li], w_lamp / (w_lamp + w_sky), 1e-5);
     /* The lamp outweighs the sky 16 to 1: Linespace's share from the
      * portals is its least. */
-    CHECK(il_portal_light_balanced_share(s) == 1.0f - IL_PORTAL_LIGHT_SHARE);
+    CHECK(il_portal_light_share(s) == 1.0f - IL_PORTAL_LIGHT_SHARE_MAX);
     CHECK_NEAR((double)lamp / lights, w_lamp / (w_lamp + w_sky), 0.01);
     CHECK_REL(lamp_flux / N_PHOTONS, lamp_power, 0.02);
     CHECK_REL(sky_flux / N_PHOTONS, sky_power, 0.03);

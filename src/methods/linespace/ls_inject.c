@@ -32,7 +32,7 @@
  *
  * In a scene with portals and light from outside (docs/linespace.md,
  * "Windows"), a share of the paths start at the portals as the light
- * coming in by them (methods/portal_light.h, il_portal_light_balanced_share),
+ * coming in by them (methods/portal_light.h, il_portal_light_share),
  * and the lights' own paths end where they enter by one, deposited up to
  * the crossing.
  *
@@ -284,7 +284,7 @@ il_status il_ls_inject(const il_scene *scene, const il_ls_settings *st, uint64_t
         return il_fail(err, IL_ERR_MEMORY, "linespace: out of memory for the injection");
     }
     /* The share of the paths that start at the portals (0: none). */
-    const float share = ls->portal_light ? il_portal_light_balanced_share(scene) : 0.0f;
+    const float share = ls->portal_light ? il_portal_light_share(scene) : 0.0f;
     bool oom = false;
     uint64_t injected = 0;
     double t0 = seconds_now();

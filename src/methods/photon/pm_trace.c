@@ -30,7 +30,7 @@ static inline uint64_t trace_one(const il_scene *s, uint64_t seed, uint64_t inde
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    if (!il_light_emit(s, u, at_portals ? IL_PORTAL_LIGHT_SHARE : 0.0f, &rng, max_depth, &e))
+    if (!il_light_emit(s, u, at_portals ? il_portal_light_share(s) : 0.0f, &rng, max_depth, &e))
         return e.rays;
 
     const il_tracer *tr = s->tracer;
