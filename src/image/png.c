@@ -68,6 +68,12 @@ static il_status png_check_structure(const unsigned char *data, size_t size, con
         if ((crc ^ 0xFFFFFFFFu) != be32(type + 4 + len))
             return il_fail(err, IL_ERR_FORMAT, "%s: PNG chunk '%.4s' is corrupt (its CRC does not "
                            "match)", path, (const char *)type);
+        /* stb_image calls an image of no pixels an "unknown image type". */
+        if (memcmp(type, "IHDR", 4) == 0 && len >= 8) {
+            il_status st = il_image_check_size(be32(type + 4), be32(type + 8), path, err);
+            if (st != IL_OK)
+                return st;
+        }
         off += 12 + (size_t)len;
         if (memcmp(type, "IEND", 4) == 0)
             return IL_OK;

@@ -401,6 +401,36 @@ static void test_png_crc(void)
     il_image_free(&back);
 }
 
+/* A well-formed PNG of 0 x 5 pixels (IHDR with a valid CRC): the image's
+ * zero size is named, not stb_image's "unknown image type". */
+static void test_png_zero_size(void)
+{
+    static const unsigned char ihdr[17] = {'I', 'H', 'D', 'R', 0, 0, 0, 0, 0, 0, 0, 5, 8, 2, 0, 0, 0};
+    unsigned char buf[64] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13};
+    size_t n = 12;
+    memcpy(buf + n, ihdr, sizeof ihdr);
+    n += sizeof ihdr;
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t k = 0; k < sizeof ihdr; k++) {
+        crc ^= ihdr[k];
+        for (int b = 0; b < 8; b++)
+            crc = crc & 1u ? 0xEDB88320u ^ (crc >> 1) : crc >> 1;
+    }
+    crc ^= 0xFFFFFFFFu;
+    for (int b = 3; b >= 0; b--)
+        buf[n++] = (unsigned char)(crc >> (8 * b));
+    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    memcpy(buf + n, iend, sizeof iend);
+    n += sizeof iend;
+    char p[1100];
+    save(tmp_path(p, "zero.png"), buf, n);
+    il_image back = {0};
+    il_error err = {0};
+    CHECK(il_image_read(p, &back, &err) == IL_ERR_FORMAT);
+    CHECK(strstr(err.message, "zero.png: image has zero size (0x5)"));
+    il_image_free(&back);
+}
+
 static void test_png(void)
 {
     char p[1100];
@@ -905,6 +935,7 @@ int main(void)
     test_png_grey_alpha_and_jpeg();
     test_exr_foreign();
     test_corrupt_files();
+    test_png_zero_size();
     test_bad_headers();
     test_missing_and_dispatch();
     test_write_errors();
