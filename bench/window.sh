@@ -2,7 +2,8 @@
 # Photon mapping, SPPM and Linespace through a window (docs/photon-mapping.md,
 # "Windows"): scenes/window-room.json, 160x120, under the overcast sky and
 # under the clear sky with the sun at 30 degrees, and scenes/lamp-room.json
-# (the overcast sky and a lamp in the room), against the path tracer
+# (the overcast sky and a lamp in the room), and scenes/l-room.json (an
+# L-shaped room: l-overcast, l-clear), against the path tracer
 # at 1024 spp (another seed); photon at 64 spp (seconds, photons stored), SPPM and the
 # path tracer for 10 s each (passes); Linespace at 64 spp with the portals'
 # light and without (docs/linespace.md, "Windows"), and the path tracer for
@@ -17,11 +18,12 @@ trap 'rm -rf "$OUT"' EXIT
 SIZE="--width 160 --height 120 --threads $T -q --exr-float"
 error() { "$ILLUM" compare "$1" "$OUT/ref.exr" | awk '/rel_mse/ {m = $2} /mean_luminance/ {a = $2; b = $3} END {printf "rel_mse %s, mean %s against %s", m, a, b}'; }
 stat() { python3 -c "import json, sys; d = json.load(open('$OUT/s.json')); print($1)"; }
-for sky in overcast clear lamp; do
+for sky in overcast clear lamp l-overcast l-clear; do
   SKY=""
   SCENE=scenes/window-room.json
-  [ $sky = clear ] && SKY="--sky clear --sun 30,180"
+  case $sky in *clear) SKY="--sky clear --sun 30,180" ;; esac
   [ $sky = lamp ] && SCENE=scenes/lamp-room.json
+  case $sky in l-*) SCENE=scenes/l-room.json ;; esac
   "$ILLUM" render $SCENE $SIZE $SKY --spp 1024 --seed 1001 -o "$OUT/ref.exr"
   "$ILLUM" render $SCENE $SIZE $SKY --method photon --spp 64 -o "$OUT/a.exr" --stats "$OUT/s.json"
   echo "$sky, photon 64 spp: $(stat "'%.1f s, %d + %d photons stored' % (d['total_seconds'], d['photon']['stored_global'], d['photon']['stored_caustic'])"); $(error "$OUT/a.exr")"

@@ -866,7 +866,8 @@ typedef struct il_linespace_stats {
     float grid_min[3], grid_max[3]; /* the grid's box */
     bool interior;             /* it covers the interior the camera sees, not the
                                   whole scene (no_portal_light) */
-    uint64_t outside;          /* camera path vertices outside it, which traced on */
+    uint64_t outside;          /* camera path vertices outside it (or, with the portals'
+                                  light, outside by a portal), which traced on */
     uint32_t n;
     uint64_t voxels;           /* voxels holding a Linespace (non-empty) */
     uint64_t shafts;           /* shafts stored (those containing geometry) */

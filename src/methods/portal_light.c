@@ -121,6 +121,15 @@ bool il_portal_light_wanted(const il_scene *s)
     return s->portal_light && il_portal_area_seen(s, s->camera.desc.position) > 0.0f;
 }
 
+/* How far past a portal's plane a path must end to have crossed it: a
+ * path that ends on the plane (reflected by a pane in it) has not.  A few
+ * times il_offset_origin's offset. */
+static float crossing_margin(const il_scene *s, const il_ray *ray)
+{
+    float mag = il_maxf(fabsf(ray->org.x), il_maxf(fabsf(ray->org.y), fabsf(ray->org.z)));
+    return 4.0f * (il_trace_epsilon(s->tracer) + mag * 4.0f * FLT_EPSILON);
+}
+
 bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32_t seg,
                            const il_ray *ray, float t_end, float *t_cross)
 {
@@ -128,9 +137,28 @@ bool il_portal_light_stops(const il_scene *s, const il_light_emission *e, uint32
         return false;
     if (seg == 0 && (e->portal || s->lights[e->light].kind != IL_LIGHTK_ENVIRONMENT))
         return false;
-    /* A path that ends on the portal's plane (reflected by a pane in it)
-     * has not entered: the margin is a few times il_offset_origin's. */
-    float mag = il_maxf(fabsf(ray->org.x), il_maxf(fabsf(ray->org.y), fabsf(ray->org.z)));
-    float margin = 4.0f * (il_trace_epsilon(s->tracer) + mag * 4.0f * FLT_EPSILON);
-    return il_portal_entered(s, ray->org, ray->dir, t_end, margin, t_cross);
+    return il_portal_entered(s, ray->org, ray->dir, t_end, crossing_margin(s, ray), t_cross);
+}
+
+bool il_portal_light_starts_inside(const il_scene *s, const il_light_emission *e, const il_ray *ray,
+                                   float t_end)
+{
+    if (!e->split || e->portal)
+        return true;
+    il_light_kind kind = s->lights[e->light].kind;
+    if (kind == IL_LIGHTK_ENVIRONMENT)
+        return false;
+    if (kind == IL_LIGHTK_DIRECTIONAL)
+        return il_portal_light_enters(s, ray, t_end);
+    return true;
+}
+
+bool il_portal_light_leaves(const il_scene *s, const il_ray *ray, float t_end, float *t_cross)
+{
+    return il_portal_exited(s, ray->org, ray->dir, t_end, crossing_margin(s, ray), t_cross);
+}
+
+bool il_portal_light_enters(const il_scene *s, const il_ray *ray, float t_end)
+{
+    return il_portal_entered(s, ray->org, ray->dir, t_end, crossing_margin(s, ray), NULL);
 }

@@ -54,4 +54,22 @@ bool il_portal_light_wanted(const il_scene *scene);
 bool il_portal_light_stops(const il_scene *scene, const il_light_emission *e, uint32_t seg,
                            const il_ray *ray, float t_end, float *t_cross);
 
+/* For a method that keeps the interior's light alone (Linespace's
+ * injection: the light outside, deposited in voxels that a wall splits,
+ * would be read inside).  Whether light path e, whose first segment is
+ * ray up to t_end, starts inside: always when its paths are not split;
+ * from the portals, and from a point, spot or area light (taken to be
+ * inside), yes; from a directional light only when that segment enters by
+ * a portal (the sun through a window); from the environment never (its
+ * paths stop where they enter). */
+bool il_portal_light_starts_inside(const il_scene *scene, const il_light_emission *e,
+                                   const il_ray *ray, float t_end);
+
+/* Whether the segment ray up to t_end leaves by a portal (crosses one away
+ * from its lit side, at *t_cross when not NULL) or enters by one, ending
+ * past its plane (il_portal_exited, il_portal_entered, with the margin of
+ * il_portal_light_stops). */
+bool il_portal_light_leaves(const il_scene *scene, const il_ray *ray, float t_end, float *t_cross);
+bool il_portal_light_enters(const il_scene *scene, const il_ray *ray, float t_end);
+
 #endif

@@ -186,14 +186,17 @@ bool il_portal_point(const il_scene *s, float total, il_vec2 u, il_vec3 *x, il_v
     return q != NULL;
 }
 
-bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
-                       float *t_cross)
+/* The first crossing of a portal triangle by org + t dir, t in (0, t_end),
+ * towards its lit side (side > 0) or away from it (side < 0), that ends
+ * more than `margin` beyond the triangle's plane. */
+static bool first_crossing(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                           float side, float *t_cross)
 {
     bool found = false;
     float first = INFINITY;
     for (uint32_t i = 0; i < s->num_portals; i++) {
         const il_portal *q = &s->portals[i];
-        float c = v3_dot(dir, q->n), t;
+        float c = side * v3_dot(dir, q->n), t;
         if (c > 0.0f && line_crosses(q, org, dir, &t) && t > 0.0f && t < t_end &&
             (t_end - t) * c > margin && t < first) {
             first = t;
@@ -203,6 +206,18 @@ bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end,
     if (t_cross)
         *t_cross = first;
     return found;
+}
+
+bool il_portal_entered(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                       float *t_cross)
+{
+    return first_crossing(s, org, dir, t_end, margin, 1.0f, t_cross);
+}
+
+bool il_portal_exited(const il_scene *s, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                      float *t_cross)
+{
+    return first_crossing(s, org, dir, t_end, margin, -1.0f, t_cross);
 }
 
 il_status il_scene_add_portal(il_scene *s, const il_vec3 *corners, uint32_t num_triangles,

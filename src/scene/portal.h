@@ -84,4 +84,8 @@ bool il_portal_point(const il_scene *scene, float total, il_vec2 u, il_vec3 *x, 
 bool il_portal_entered(const il_scene *scene, il_vec3 org, il_vec3 dir, float t_end, float margin,
                        float *t_cross);
 
+/* The same for leaving by a portal: crossing it away from its lit side. */
+bool il_portal_exited(const il_scene *scene, il_vec3 org, il_vec3 dir, float t_end, float margin,
+                      float *t_cross);
+
 #endif

@@ -2,7 +2,9 @@
  * with the right distribution of directions, consistent with what the path
  * tracer receives from it (lights.c), and lights are chosen by power; with
  * portals, the portals' light (methods/portal_light.c) carries what enters
- * by them and the lights' paths stop where they enter. */
+ * by them and the lights' paths stop where they enter; of them Linespace
+ * keeps the portals' paths and the sun's that come in by a portal, never
+ * the sky's own (il_portal_light_starts_inside). */
 #include <string.h>
 
 #include "scene_build.h"
@@ -378,6 +380,9 @@ static void test_portal_light_environment(void)
             continue;
         }
         CHECK(e.split);
+        il_ray ray0 = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
+        /* Linespace keeps the portals' paths, never the sky's own. */
+        bad += il_portal_light_starts_inside(s, &e, &ray0, INFINITY) != e.portal;
         if (e.portal) {
             portal++;
             portal_flux += e.power.y;
@@ -424,7 +429,7 @@ static void test_portal_directional(void)
     add_portal(s);
     commit(s);
     double r = s->scene_radius, through = 0, total = 0;
-    uint32_t lights = 0, crossing = 0, stopped_direct = 0, stopped_after = 0;
+    uint32_t lights = 0, crossing = 0, stopped_direct = 0, stopped_after = 0, inside_wrong = 0;
     il_pcg32 rng = il_pcg32_seed(5, 8);
     for (int i = 0; i < N_PHOTONS; i++) {
         il_light_emission e;
@@ -433,12 +438,14 @@ static void test_portal_directional(void)
         lights++;
         total += e.power.x;
         double t = portal_crossing(&e);
+        il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
+        float t_end = (-1.0f - e.org.y) / e.dir.y;
+        /* Linespace keeps the sun's paths that come in by the window alone. */
+        inside_wrong += il_portal_light_starts_inside(s, &e, &ray, t_end) != (t > 0);
         if (!(t > 0))
             continue;
         crossing++;
         through += e.power.x;
-        il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
-        float t_end = (-1.0f - e.org.y) / e.dir.y;
         stopped_direct += il_portal_light_stops(s, &e, 0, &ray, t_end, NULL);
         stopped_after += il_portal_light_stops(s, &e, 1, &ray, t_end, NULL);
     }
@@ -450,6 +457,7 @@ static void test_portal_directional(void)
     CHECK_REL(total / N_PHOTONS, 2.0 * PI_D * r * r, 0.03);
     CHECK(stopped_direct == 0);
     CHECK(stopped_after == crossing);
+    CHECK(inside_wrong == 0);
     il_scene_release(s);
 }
 

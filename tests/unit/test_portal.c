@@ -1,5 +1,6 @@
 /* Environment portals (scene/portal.h):
  * - which points a portal lights: those strictly on the side its front faces;
+ * - segments entering and leaving by a portal, and where;
  *   crossings within 1e-3 of its plane's cosine count for nothing;
  * - directions through a rectangle of a x b seen on its axis from distance
  *   d: the mean of 1/pdf over them is the rectangle's solid angle,
@@ -60,6 +61,25 @@ static void test_lit_side(const il_scene *s)
     il_vec3 L1 = il_environment_sample_at(s, v3(0, 3, 0), v2(0.3f, 0.6f), &d1, &p1);
     il_vec3 L2 = il_environment_sample(s, v2(0.3f, 0.6f), &d2, &p2);
     CHECK(p1 == p2 && d1.x == d2.x && d1.y == d2.y && d1.z == d2.z && L1.x == L2.x);
+}
+
+/* Crossing the portal (lit side below, y < 2): a segment from above that
+ * ends below enters, and one from below that ends above leaves, each at
+ * its crossing; not when it ends on the plane within the margin, misses
+ * the rectangle, or runs the other way. */
+static void test_crossings(const il_scene *s)
+{
+    const float m = 1e-3f;
+    float t = 0.0f;
+    CHECK(il_portal_entered(s, v3(0.1f, 3, 0.2f), v3(0, -1, 0), 2.0f, m, &t));
+    CHECK_NEAR(t, 1.0, 1e-5);
+    CHECK(!il_portal_exited(s, v3(0.1f, 3, 0.2f), v3(0, -1, 0), 2.0f, m, NULL));
+    CHECK(il_portal_exited(s, v3(0.1f, 1, 0.2f), v3(0, 1, 0), 2.0f, m, &t));
+    CHECK_NEAR(t, 1.0, 1e-5);
+    CHECK(!il_portal_entered(s, v3(0.1f, 1, 0.2f), v3(0, 1, 0), 2.0f, m, NULL));
+    CHECK(!il_portal_exited(s, v3(0.1f, 1, 0.2f), v3(0, 1, 0), 1.0f, m, NULL));   /* ends on the plane */
+    CHECK(!il_portal_exited(s, v3(0.9f, 1, 0.2f), v3(0, 1, 0), 2.0f, m, NULL));   /* beside it */
+    CHECK(!il_portal_exited(s, v3(0.1f, 1, 0.2f), v3(0, 1, 0), 0.5f, m, NULL));   /* short of it */
 }
 
 /* A point a hair in front of the portal's plane sees it edge-on: such
@@ -296,6 +316,7 @@ int main(void)
 {
     il_scene *s = portal_scene();
     test_lit_side(s);
+    test_crossings(s);
     test_grazing(s);
     test_solid_angle(s);
     test_pdf_normalised(s);

@@ -139,17 +139,32 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
+    /* Split at the portals, the Linespace holds the light inside alone:
+     * the environment's paths never enter (they stop where they would). */
+    if (e.split && !e.portal && s->lights[e.light].kind == IL_LIGHTK_ENVIRONMENT)
+        return;
     /* The portals' light from a surface outside has bounced there. */
     for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
         il_hit hit;
         c->rays++;
         bool found = il_trace_closest(tr, &ray, &hit);
         float t_end = found ? hit.t : INFINITY, t_cross;
+        /* A sun's path that meets the outside before a window lights only
+         * the outside: nothing of it is kept. */
+        if (seg == 0 && !il_portal_light_starts_inside(s, &e, &ray, t_end))
+            return;
         /* Entering by a portal, the path ends there: the portals' light
-         * brings what it would bring in. */
+         * brings what it would bring in.  Leaving by one, it ends too:
+         * outside, its light would reach voxels that straddle a wall (an
+         * L-shaped room's grid spans the yard in its crook), and what
+         * comes back in the portals' light brings. */
         bool stops = il_portal_light_stops(s, &e, seg, &ray, t_end, &t_cross);
         if (stops)
             t_end = t_cross;
+        else if (e.split && il_portal_light_leaves(s, &ray, t_end, &t_cross)) {
+            stops = true;
+            t_end = t_cross;
+        }
         /* Segment `bounces` has scattered that many times: the first
          * (straight from the light) is direct light, which the sampling
          * pass takes by shadow rays. */

@@ -38,6 +38,7 @@
 #include "methods/diffuse_wave.h"
 #include "methods/distrib.h"
 #include "methods/linespace/ls.h"
+#include "methods/portal_light.h"
 #include "scene/bsdf.h"
 #include "scene/direct.h"
 #include "scene/lights.h"
@@ -82,6 +83,7 @@ typedef struct ls_path {
     bool specular;                 /* the ray left the camera or a delta lobe */
     bool camera_chain;             /* ... and so did every ray before it */
     bool traced;                   /* a non-delta bounce was traced on, not read */
+    bool exterior;                 /* outside: it left by a portal (track_side) */
     uint32_t depth;                /* scattering events before `ray` */
     bool shadow, read;             /* pending: shadow_ray's light, read_L */
     il_ray shadow_ray;
@@ -105,7 +107,7 @@ static void path_begin(ls_path *p, il_vec3 org, il_vec3 dir)
     p->beta = v3s(1.0f);
     p->ray = (il_ray){.org = org, .tmin = 0.0f, .dir = dir, .tmax = INFINITY};
     p->specular = p->camera_chain = true;
-    p->traced = false;
+    p->traced = p->exterior = false;
     p->depth = 0;
     p->shadow = p->read = false;
     p->rays = 1;                   /* the camera ray */
@@ -156,6 +158,19 @@ static ls_step path_after_lookup(const ls_method *m, ls_path *p, il_ls_lookup_st
     return path_advance(m->scene, p, p->x, p->ng, p->wi, p->rr_u);
 }
 
+/* With the portals' light the Linespace holds the light inside alone
+ * (ls_inject.c), the camera being inside: a path that leaves by a portal
+ * is outside, where it traces on as the path tracer, until it enters by
+ * one again.  p->ray ended at t_hit. */
+static void track_side(const ls_method *m, ls_path *p, float t_hit)
+{
+    if (!m->ls->portal_light)
+        return;
+    if (p->exterior ? il_portal_light_enters(m->scene, &p->ray, t_hit)
+                    : il_portal_light_leaves(m->scene, &p->ray, t_hit, NULL))
+        p->exterior = !p->exterior;
+}
+
 /* The vertex where p->ray ended (hit NULL: it left the scene).  u: its four
  * pairs, always drawn in this order (a fifth for the blur is drawn here
  * when a lookup is made), and cos_dir the cosine warp of u[2]; dw, when
@@ -176,6 +191,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
                                                                 : il_environment_radiance(s, p->ray.dir)));
         return LS_STOP;
     }
+    track_side(m, p, hit->t);
     il_vec3 wo = v3_neg(p->ray.dir);
     const il_material *mat = surf->material;
     if (p->specular && !v3_is_zero(mat->emission))
@@ -223,7 +239,7 @@ static ls_step path_step(const ls_method *m, ls_path *p, const il_hit *hit, cons
         }
         /* Where the grid covers only the interior the camera sees, a
          * point outside it has no Linespace: the path traces on there. */
-        bool outside = m->ls->partial && !il_ls_inside(m->ls, surf->p);
+        bool outside = p->exterior || (m->ls->partial && !il_ls_inside(m->ls, surf->p));
         cnt->outside += outside;
         if ((p->traced || !m->set.trace_first_bounce) && u[3].x < lookup_probability(m, mat) && !outside) {
             cnt->lookups++;
