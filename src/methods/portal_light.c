@@ -9,9 +9,9 @@
  * finds the window from inside (scene/portal.h); light paths start
  * outside.  So in a scene with portals and light from outside (the
  * environment or a directional light), a share of the light paths
- * (il_portal_light_share) start at the portals instead: a uniform point x of their
- * area A, a direction d into their lit side, and the power of the radiance
- * arriving at x from outside,
+ * (il_portal_light_share) start at the portals instead: a uniform point x
+ * of their area A, a direction d into their lit side, and the power of the
+ * radiance arriving at x from outside,
  *
  *     Phi = L_in(x, -d) cos / (pdf_x pdf(d) share) = L_in cos A / (pdf(d) share),
  *

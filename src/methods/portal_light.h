@@ -24,8 +24,8 @@
  * inside), whose own paths bring their light in; within
  * [1 - IL_PORTAL_LIGHT_SHARE_MAX, IL_PORTAL_LIGHT_SHARE_MAX].  In the
  * window room under a sun (0.2 instead of 0.8) Linespace's error fell from
- * 0.061 to 0.020, photon mapping's from 0.043 to 0.019; with a lamp (0.46)
- * from 0.0086 to 0.0055 and from 0.011 to 0.0065 (docs/photon-mapping.md,
+ * 0.061 to 0.020, photon mapping's from 0.043 to 0.018; with a lamp (0.46)
+ * from 0.0086 to 0.0055 and from 0.012 to 0.0069 (docs/photon-mapping.md,
  * "Windows": photon mapping could take it only once its search left out
  * the photons on the ground beside a wall without thickness). */
 float il_portal_light_share(const il_scene *scene);

@@ -55,12 +55,12 @@ static inline bool il_pm_normal_agrees(const il_photon *ph, il_vec3 n)
  * sphere along the normal into a disc (Jensen 2001, ch. 7), so photons on
  * a parallel surface just behind the query's (the ground a few
  * centimetres under a floor, outside a wall without thickness) do not
- * count.  The
- * turn: a photon at distance d on a plane whose normal is turned by theta
- * from n, through a point of the query's plane, lies at most d sin(theta)
- * off that plane, which covers a tessellated curve's facets as well as a
- * smooth curve (d theta / 2 off its tangent plane); the thickness also
- * covers the degree or so the normal's 14-bit code may be off by. */
+ * count.  The turn: a photon at distance d on a plane whose normal is
+ * turned by theta from n, through a point of the query's plane, lies at
+ * most d sin(theta) off that plane, which covers a tessellated curve's
+ * facets as well as a smooth curve (d theta / 2 off its tangent plane);
+ * the thickness also covers the degree or so the normal's 14-bit code may
+ * be off by. */
 static inline bool il_pm_on_surface(const il_photon *ph, il_vec3 n, il_vec3 x, float r)
 {
     il_vec3 v = il_pm_normal_raw(ph);
