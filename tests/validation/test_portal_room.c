@@ -284,6 +284,20 @@ static void test_view_size(void)
     il_scene_release(sky);
 }
 
+/* Linespace at 32 spp and the path tracer at 512 spp (the reference of
+ * the tests below), 64 x 48. */
+static il_image linespace_image(il_scene *s, il_linespace_desc *ld, il_render_stats *st)
+{
+    il_render_desc rd = {.method = IL_METHOD_LINESPACE, .linespace = ld, .spp = 32, .seed = 2, .threads = 2};
+    return render_desc_image(s, 64, 48, &rd, st);
+}
+
+static il_image reference_image(il_scene *s)
+{
+    il_render_desc pt = {.spp = 512, .seed = 2, .threads = 2};
+    return render_desc_image(s, 64, 48, &pt, NULL);
+}
+
 /* Photon mapping of scenes/window-room.json, where photons enter the room
  * only by the window (methods/portal_light.c): the portals' light carries
  * what the sky and the ground outside send in, so most photons land in the
@@ -302,8 +316,7 @@ static void test_photon(void)
     il_render_desc rd = {.method = IL_METHOD_PHOTON, .photon = &pd, .spp = 32, .seed = 2, .threads = 2};
     il_render_stats st = {0};
     il_image a = render_desc_image(s, 64, 48, &rd, &st);
-    il_render_desc pt = {.spp = 512, .seed = 2, .threads = 2};
-    il_image b = render_desc_image(s, 64, 48, &pt, NULL);
+    il_image b = reference_image(s);
     printf("window room: photon %.5f (%llu global photons of %llu), path tracer %.5f\n", image_mean(&a, 1),
            (unsigned long long)st.photon.stored_global, (unsigned long long)st.photon.emitted,
            image_mean(&b, 1));
@@ -346,8 +359,7 @@ static void test_lamp(void)
     uint32_t li = s->lights[0].kind == IL_LIGHTK_POINT ? 0 : s->num_lights - 1;
     printf("window room with a lamp: the lamp's share of the light samples %.3f\n", (double)s->light_pmf[li]);
     CHECK(s->lights[li].kind == IL_LIGHTK_POINT && s->light_pmf[li] > 0.5f);
-    il_render_desc pt = {.spp = 512, .seed = 2, .threads = 2};
-    il_image ref = render_desc_image(s, 64, 48, &pt, NULL);
+    il_image ref = reference_image(s);
     il_photon_desc pd = {.photons = 300000};
     il_render_desc rd = {.method = IL_METHOD_PHOTON, .photon = &pd, .spp = 32, .seed = 2, .threads = 2};
     il_image a = render_desc_image(s, 64, 48, &rd, NULL);
@@ -355,8 +367,7 @@ static void test_lamp(void)
     il_render_desc sp = {.method = IL_METHOD_SPPM, .photon = &sd, .spp = 32, .seed = 2, .threads = 2};
     il_image b = render_desc_image(s, 64, 48, &sp, NULL);
     il_linespace_desc ld = {0};
-    il_render_desc lr = {.method = IL_METHOD_LINESPACE, .linespace = &ld, .spp = 32, .seed = 2, .threads = 2};
-    il_image c = render_desc_image(s, 64, 48, &lr, NULL);
+    il_image c = linespace_image(s, &ld, NULL);
     printf("window room with a lamp: photon %.5f, sppm %.5f, linespace %.5f, path tracer %.5f\n",
            image_mean(&a, 1), image_mean(&b, 1), image_mean(&c, 1), image_mean(&ref, 1));
     CHECK_REL(image_mean(&a, 1), image_mean(&ref, 1), 0.02);
@@ -381,11 +392,8 @@ static void test_linespace(void)
     if (!s)
         return;
     il_linespace_desc ld = {0};
-    il_render_desc rd = {.method = IL_METHOD_LINESPACE, .linespace = &ld, .spp = 32, .seed = 2, .threads = 2};
     il_render_stats st = {0};
-    il_image a = render_desc_image(s, 64, 48, &rd, &st);
-    il_render_desc pt = {.spp = 512, .seed = 2, .threads = 2};
-    il_image b = render_desc_image(s, 64, 48, &pt, NULL);
+    il_image a = linespace_image(s, &ld, &st), b = reference_image(s);
     printf("window room: linespace %.5f (grid %ux%ux%u over the interior %d, %llu deposits, %llu "
            "vertices outside), path tracer %.5f\n",
            image_mean(&a, 1), st.linespace.grid[0], st.linespace.grid[1], st.linespace.grid[2],
@@ -400,7 +408,7 @@ static void test_linespace(void)
 
     /* Without: the whole scene's grid, the lights' paths alone. */
     ld.no_portal_light = true;
-    a = render_desc_image(s, 64, 48, &rd, &st);
+    a = linespace_image(s, &ld, &st);
     printf("window room: linespace without the portals' light %.5f (grid %ux%ux%u)\n", image_mean(&a, 1),
            st.linespace.grid[0], st.linespace.grid[1], st.linespace.grid[2]);
     CHECK(!st.linespace.interior && st.linespace.outside == 0);
@@ -424,11 +432,8 @@ static void test_l_room(void)
     if (!s)
         return;
     il_linespace_desc ld = {0};
-    il_render_desc rd = {.method = IL_METHOD_LINESPACE, .linespace = &ld, .spp = 32, .seed = 2, .threads = 2};
     il_render_stats st = {0};
-    il_image a = render_desc_image(s, 64, 48, &rd, &st);
-    il_render_desc pt = {.spp = 512, .seed = 2, .threads = 2};
-    il_image b = render_desc_image(s, 64, 48, &pt, NULL);
+    il_image a = linespace_image(s, &ld, &st), b = reference_image(s);
     printf("L-shaped room: linespace %.5f (grid %ux%ux%u over the interior %d, x up to %.2f), path tracer %.5f\n",
            image_mean(&a, 1), st.linespace.grid[0], st.linespace.grid[1], st.linespace.grid[2],
            (int)st.linespace.interior, st.linespace.grid_max[0], image_mean(&b, 1));
