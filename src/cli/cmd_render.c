@@ -537,8 +537,14 @@ int cmd_render(int argc, char **argv)
             cli_linespace_summary(&rs.linespace);
         else if (o.desc.method == IL_METHOD_RSM)
             cli_rsm_summary(&o.m.rsm.desc, &rs.rsm);
-        fprintf(stderr, "illum: %u spp in %.2f s (%.3g Mrays/s, %.3g Msamples/s) -> ", rs.spp,
-                rs.seconds, rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0,
+        /* Radiosity's solve casts rays it does not count (or none, with
+         * the hemicube) and hr's counts them apart: their camera rays over
+         * the whole time would be no ray rate at all. */
+        bool ray_rate = o.desc.method != IL_METHOD_RADIOSITY && o.desc.method != IL_METHOD_HR;
+        fprintf(stderr, "illum: %u spp in %.2f s (", rs.spp, rs.seconds);
+        if (ray_rate)
+            fprintf(stderr, "%.3g Mrays/s, ", rs.seconds > 0 ? (double)rs.rays / rs.seconds * 1e-6 : 0.0);
+        fprintf(stderr, "%.3g Msamples/s) -> ",
                 rs.seconds > 0 ? (double)o.width * o.height * rs.spp / rs.seconds * 1e-6 : 0.0);
         for (int i = 0; i < o.num_outputs; i++)
             fprintf(stderr, "%s%s", i ? ", " : "", o.outputs[i]);

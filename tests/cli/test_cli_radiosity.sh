@@ -34,8 +34,13 @@ grep -q "mean_luminance  0  0" out.txt && fail "radiosity image is black"
 
 # Ray-cast form factors and a gathering solver run as well.
 expect_exit 0 "raycast + jacobi" -- "$ILLUM" render shadow-room --method radiosity --subdiv 1 \
-    --form-factors raycast --ff-samples 256 --solver jacobi --width 16 --height 16 --spp 1 -q -o shadow.pfm
+    --form-factors raycast --ff-samples 256 --solver jacobi --width 16 --height 16 --spp 1 -o shadow.pfm
 expect_file shadow.pfm "raycast + jacobi"
+# The summary gives no ray rate: the solve's rays are not counted, and the
+# camera's over the whole time would read as a slow ray caster.
+expect_stderr "illum: 1 spp in .* s (.* Msamples/s) -> shadow.pfm" "radiosity summary"
+checks=$((checks + 1))
+grep -q "Mrays/s" err.txt && fail "radiosity summary gives a ray rate"
 
 # --form-factors auto (the default) takes ray-cast when the hemicube would
 # have fewer than 4 pixels a patch (3*32^2 pixels, simple-room's 1,536
