@@ -148,9 +148,12 @@ bool il_portal_light_starts_inside(const il_scene *s, const il_light_emission *e
     il_light_kind kind = s->lights[e->light].kind;
     if (kind == IL_LIGHTK_ENVIRONMENT)
         return false;
-    if (kind == IL_LIGHTK_DIRECTIONAL)
-        return il_portal_light_enters(s, ray, t_end);
-    return true;
+    /* A lamp on a portal's lit side is inside, as the camera is
+     * (il_portal_light_wanted); one elsewhere (a street lamp before the
+     * window) and a sun are outside until they come in by a portal. */
+    if (kind != IL_LIGHTK_DIRECTIONAL && il_portal_area_seen(s, e->p) > 0.0f)
+        return true;
+    return il_portal_light_enters(s, ray, t_end);
 }
 
 bool il_portal_light_leaves(const il_scene *s, const il_ray *ray, float t_end, float *t_cross)

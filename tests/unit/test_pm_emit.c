@@ -491,6 +491,40 @@ static void test_portal_light_scattered(void)
     il_scene_release(s);
 }
 
+/* Which lamps' paths Linespace keeps (il_portal_light_starts_inside): a
+ * lamp below the portal, on its lit side, is inside and keeps every path;
+ * a street lamp above it keeps the paths that come in by the portal. */
+static void test_portal_lamps_inside(void)
+{
+    il_scene *s = ground_under_sky(v3s(0.5f));
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0), .intensity = v3s(3.0f)});
+    add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 4, 0), .intensity = v3s(3.0f)});
+    add_portal(s);
+    commit(s);
+    uint32_t inside = 0, street = 0, street_in = 0, wrong = 0;
+    il_pcg32 rng = il_pcg32_seed(21, 4);
+    for (int i = 0; i < N_PHOTONS; i++) {
+        il_light_emission e;
+        if (!emit(s, &rng, &e) || e.portal || s->lights[e.light].kind != IL_LIGHTK_POINT)
+            continue;
+        il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
+        float t_end = e.dir.y < 0.0f ? (-1.0f - e.org.y) / e.dir.y : INFINITY;
+        bool kept = il_portal_light_starts_inside(s, &e, &ray, t_end);
+        if (e.p.y < 2.0f) {
+            inside++;
+            wrong += !kept;
+        } else {
+            street++;
+            street_in += kept;
+            wrong += kept != (portal_crossing(&e) > 0);
+        }
+    }
+    printf("lamps' paths kept: inside %u of %u, the street lamp %u of %u\n", inside, inside, street_in, street);
+    CHECK(wrong == 0);
+    CHECK(inside > 1000 && street > 1000 && street_in > 0 && street_in < street / 4);
+    il_scene_release(s);
+}
+
 /* The lights' share of split paths: a lamp inside and the sky.  The
  * scene's table weighs the sky by what it brings in by the portal
  * (scene/lights.c), not by its power over the scene's bounding disk: the
@@ -554,5 +588,6 @@ int main(void)
     test_portal_directional();
     test_portal_light_scattered();
     test_portal_light_choice();
+    test_portal_lamps_inside();
     return check_report();
 }
