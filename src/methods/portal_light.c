@@ -150,8 +150,11 @@ bool il_portal_light_starts_inside(const il_scene *s, const il_light_emission *e
         return false;
     /* A lamp on a portal's lit side is inside, as the camera is
      * (il_portal_light_wanted); one elsewhere (a street lamp before the
-     * window) and a sun are outside until they come in by a portal. */
-    if (kind != IL_LIGHTK_DIRECTIONAL && il_portal_area_seen(s, e->p) > 0.0f)
+     * window) and a sun are outside until they come in by a portal.  The
+     * side is taken a hair along the path, so that a panel in the window
+     * wall's plane, shining into the room, is inside. */
+    if (kind != IL_LIGHTK_DIRECTIONAL &&
+        il_portal_area_seen(s, v3_fma(ray->org, ray->dir, crossing_margin(s, ray))) > 0.0f)
         return true;
     return il_portal_light_enters(s, ray, t_end);
 }

@@ -59,7 +59,7 @@ bool il_portal_light_stops(const il_scene *scene, const il_light_emission *e, ui
  * would be read inside).  Whether light path e, whose first segment is
  * ray up to t_end, starts inside: always when its paths are not split;
  * from the portals, and from a point, spot or area light on a portal's lit
- * side (il_portal_area_seen), yes; from a directional light or a lamp
+ * side (il_portal_area_seen, a hair along the path), yes; from a directional light or a lamp
  * elsewhere only when that segment enters by a portal (the sun, a street
  * lamp, through a window); from the environment never (its paths stop
  * where they enter). */

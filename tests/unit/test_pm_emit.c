@@ -492,25 +492,35 @@ static void test_portal_light_scattered(void)
 }
 
 /* Which lamps' paths Linespace keeps (il_portal_light_starts_inside): a
- * lamp below the portal, on its lit side, is inside and keeps every path;
- * a street lamp above it keeps the paths that come in by the portal. */
+ * lamp below the portal, on its lit side, is inside and keeps every path,
+ * as does a panel beside the portal in its plane shining down (a lamp in
+ * the window wall); a street lamp above it keeps the paths that come in
+ * by the portal. */
 static void test_portal_lamps_inside(void)
 {
     il_scene *s = ground_under_sky(v3s(0.5f));
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0), .intensity = v3s(3.0f)});
     add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 4, 0), .intensity = v3s(3.0f)});
+    uint32_t lamp = add_material(s, (il_material_desc){.emission = v3s(2.0f)});
+    add_quad(s, v3(1.5f, 2, 0), v3(0.4f, 0, 0), v3(0, 0, 0.4f), lamp);   /* faces -y */
     add_portal(s);
     commit(s);
-    uint32_t inside = 0, street = 0, street_in = 0, wrong = 0;
+    uint32_t inside = 0, street = 0, street_in = 0, panel = 0, wrong = 0;
     il_pcg32 rng = il_pcg32_seed(21, 4);
     for (int i = 0; i < N_PHOTONS; i++) {
         il_light_emission e;
-        if (!emit(s, &rng, &e) || e.portal || s->lights[e.light].kind != IL_LIGHTK_POINT)
+        if (!emit(s, &rng, &e) || e.portal)
+            continue;
+        il_light_kind kind = s->lights[e.light].kind;
+        if (kind != IL_LIGHTK_POINT && kind != IL_LIGHTK_AREA)
             continue;
         il_ray ray = {.org = e.org, .dir = e.dir, .tmax = INFINITY};
         float t_end = e.dir.y < 0.0f ? (-1.0f - e.org.y) / e.dir.y : INFINITY;
         bool kept = il_portal_light_starts_inside(s, &e, &ray, t_end);
-        if (e.p.y < 2.0f) {
+        if (kind == IL_LIGHTK_AREA) {
+            panel++;
+            wrong += !kept;
+        } else if (e.p.y < 2.0f) {
             inside++;
             wrong += !kept;
         } else {
@@ -519,9 +529,10 @@ static void test_portal_lamps_inside(void)
             wrong += kept != (portal_crossing(&e) > 0);
         }
     }
-    printf("lamps' paths kept: inside %u of %u, the street lamp %u of %u\n", inside, inside, street_in, street);
+    printf("lamps' paths kept: inside %u, the panel %u, the street lamp %u of %u; %u wrong\n", inside, panel,
+           street_in, street, wrong);
     CHECK(wrong == 0);
-    CHECK(inside > 1000 && street > 1000 && street_in > 0 && street_in < street / 4);
+    CHECK(inside > 1000 && panel > 1000 && street > 1000 && street_in > 0 && street_in < street / 4);
     il_scene_release(s);
 }
 
