@@ -121,8 +121,8 @@ static il_vec3 sample_spot(const il_light *l, il_vec2 u, float *z)
     return il_frame_to_world(&f, v3(s * cosf(phi), s * sinf(phi), c));
 }
 
-bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
-                   il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
+static bool emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float portal_share, bool inside,
+                 il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
 {
     memset(out, 0, sizeof *out);
     if (s->num_lights == 0 || !s->light_cdf || !s->light_pmf)
@@ -131,16 +131,32 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float p
     float u_light = u[0], lights_share = 1.0f;
     bool split = portal_share > 0.0f && portal_share < 1.0f && s->portal_light;
     out->split = split;
+    /* Inside alone, the environment's chance in the table (its interval
+     * [env_lo, env_lo + env_pmf)) goes to the other lights. */
+    float env_pmf = 0.0f, env_lo = 0.0f;
+    if (split && inside && s->environment_light != IL_NO_LIGHT) {
+        env_pmf = s->light_pmf[s->environment_light];
+        env_lo = s->light_cdf[s->environment_light];
+    }
     if (split) {
-        const float share = portal_share;
+        /* The environment alone: every path starts at the portals. */
+        const float share = env_pmf >= 1.0f - 1e-6f ? 1.0f : portal_share;
         if (u_light < share)
             return il_portal_light_emit(s, u_light / share, u_pos, u_dir, rng, max_depth, share, out);
         u_light = il_clampf((u_light - share) / (1.0f - share), 0.0f, 0x1.fffffep-1f);
         lights_share = 1.0f - share;
     }
+    if (env_pmf > 0.0f) {
+        u_light *= 1.0f - env_pmf;
+        if (u_light >= env_lo)
+            u_light += env_pmf;
+        u_light = il_minf(u_light, 0x1.fffffep-1f);
+    }
     /* The lights by the scene's table: their power, or in a scene with
      * portals what they bring in by them (scene/lights.c). */
     uint32_t li = pick_light(s, u_light);
+    if (env_pmf > 0.0f && li == s->environment_light)
+        return false;   /* only by rounding at the interval's ends */
     float pmf = s->light_pmf[li];
     /* u_light within the light's interval, for the sun's steering (only a
      * split path steers through the portals). */
@@ -150,7 +166,7 @@ bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float p
     if (!(pmf > 0.0f))
         return false;
     out->light = li;
-    float inv_pmf = 1.0f / (pmf * lights_share);
+    float inv_pmf = (1.0f - env_pmf) / (pmf * lights_share);
 
     switch (l->kind) {
     case IL_LIGHTK_POINT:
@@ -263,6 +279,18 @@ static il_vec3 flux_weight(const il_bsdf *b, il_vec3 wo, const il_bsdf_sample *b
         }
     }
     return w;
+}
+
+bool il_light_emit(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
+                   il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
+{
+    return emit(s, u, portal_share, false, rng, max_depth, out);
+}
+
+bool il_light_emit_inside(const il_scene *s, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
+                          il_pcg32 *rng, uint32_t max_depth, il_light_emission *out)
+{
+    return emit(s, u, portal_share, true, rng, max_depth, out);
 }
 
 bool il_light_path_scatter(const il_tracer *tr, const il_surface *surf, const il_bsdf *b,

@@ -52,6 +52,16 @@ typedef struct il_light_emission {
 bool il_light_emit(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
                    il_pcg32 *rng, uint32_t max_depth, il_light_emission *out);
 
+/* As il_light_emit, for a method that keeps the light inside alone
+ * (Linespace's injection, methods/portal_light.h): split at the portals,
+ * the lights' paths never start at the environment (its own paths would
+ * keep nothing: the portals' paths bring its light in), the other lights
+ * take its chance in proportion to theirs, and with the environment the
+ * only light every path starts at the portals.  Unsplit, the same as
+ * il_light_emit. */
+bool il_light_emit_inside(const il_scene *scene, const float u[IL_LIGHT_EMIT_DIMS], float portal_share,
+                          il_pcg32 *rng, uint32_t max_depth, il_light_emission *out);
+
 /* One bounce of a light path at surface surf with BSDF b, seen from wo:
  * samples a direction with four numbers of rng (always drawn, so the
  * stream stays aligned), applies Russian roulette and sets *power and *ray

@@ -4,7 +4,8 @@
  * portals, the portals' light (methods/portal_light.c) carries what enters
  * by them and the lights' paths stop where they enter; of them Linespace
  * keeps the portals' paths and the sun's that come in by a portal, never
- * the sky's own (il_portal_light_starts_inside). */
+ * the sky's own (il_portal_light_starts_inside), and draws no sky paths
+ * (il_light_emit_inside). */
 #include <string.h>
 
 #include "scene_build.h"
@@ -491,6 +492,53 @@ static void test_portal_light_scattered(void)
     il_scene_release(s);
 }
 
+/* il_light_emit_inside (Linespace): under a sky alone every path starts
+ * at the portal and still carries L pi A; with a lamp inside too, the
+ * lights' paths all leave the lamp, which carries its power on average,
+ * and the portal's paths keep their share and flux. */
+static void test_emit_inside(void)
+{
+    for (int with_lamp = 0; with_lamp < 2; with_lamp++) {
+        il_scene *s = ground_under_sky(v3s(0.5f));
+        if (with_lamp)
+            add_light(s, (il_light_desc){.type = IL_LIGHT_POINT, .position = v3(0, 1, 0),
+                                         .intensity = v3s(3.0f)});
+        add_portal(s);
+        commit(s);
+        float share = il_portal_light_share(s);
+        double portal_flux = 0, lamp_flux = 0;
+        uint32_t portal = 0, lamp = 0, sky = 0;
+        il_pcg32 rng = il_pcg32_seed(31, 5);
+        for (int i = 0; i < N_PHOTONS; i++) {
+            float u[IL_LIGHT_EMIT_DIMS];
+            for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
+                u[k] = il_pcg32_float(&rng);
+            il_light_emission e;
+            if (!il_light_emit_inside(s, u, share, &rng, 8, &e))
+                continue;
+            if (e.portal) {
+                portal++;
+                portal_flux += e.power.y;
+            } else if (s->lights[e.light].kind == IL_LIGHTK_POINT) {
+                lamp++;
+                lamp_flux += e.power.y;
+            } else {
+                sky++;
+            }
+        }
+        printf("emit inside%s: %u from the portal, %u from the lamp, %u from the sky\n",
+               with_lamp ? " with a lamp" : "", portal, lamp, sky);
+        CHECK(sky == 0);
+        CHECK_NEAR((double)portal / N_PHOTONS, with_lamp ? share : 1.0, 0.004);
+        CHECK_REL(portal_flux / N_PHOTONS, 0.5 * PI_D * PORTAL_AREA, 0.01);
+        if (with_lamp) {
+            CHECK(lamp + portal > N_PHOTONS - N_PHOTONS / 100);
+            CHECK_REL(lamp_flux / N_PHOTONS, 4 * PI_D * 3.0, 0.02);
+        }
+        il_scene_release(s);
+    }
+}
+
 /* Which lamps' paths Linespace keeps (il_portal_light_starts_inside): a
  * lamp below the portal, on its lit side, is inside and keeps every path,
  * as does a panel beside the portal in its plane shining down (a lamp in
@@ -600,5 +648,6 @@ int main(void)
     test_portal_light_scattered();
     test_portal_light_choice();
     test_portal_lamps_inside();
+    test_emit_inside();
     return check_report();
 }

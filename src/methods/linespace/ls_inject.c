@@ -132,17 +132,16 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
-    bool emitted = il_light_emit(s, u, portal_share, &rng, depth, &e);
+    bool emitted = il_light_emit_inside(s, u, portal_share, &rng, depth, &e);
     c->rays += e.rays;
     if (!emitted)
         return;
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
-    /* Split at the portals, the Linespace holds the light inside alone:
-     * the environment's paths never enter (they stop where they would). */
-    if (e.split && !e.portal && s->lights[e.light].kind == IL_LIGHTK_ENVIRONMENT)
-        return;
+    /* Split at the portals, the Linespace holds the light inside alone,
+     * which the environment's own paths never reach (they stop where they
+     * would enter): il_light_emit_inside draws none. */
     /* The portals' light from a surface outside has bounced there. */
     for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
         il_hit hit;
