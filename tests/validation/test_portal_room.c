@@ -425,7 +425,7 @@ static void test_linespace(void)
  * by the window, keep nothing: ls_inject.c); with the outside's light in
  * those voxels the right wall read twice as bright.  The four surfaces
  * the camera sees most of come within 8% of the path tracer (measured:
- * 0.3-3.9% low), the image mean within 4% (measured: 2.0% low). */
+ * 0.3-3.6% low), the image mean within 4% (measured: 1.9% low). */
 static void test_l_room(void)
 {
     il_scene *s = load_committed(IL_SOURCE_DIR "/scenes/l-room.json");
