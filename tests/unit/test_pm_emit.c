@@ -39,13 +39,20 @@ static il_scene *ground_under_sky(il_vec3 radiance)
     return s;
 }
 
-/* One emission; in a scene with portals, the light paths split there. */
-static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
+/* One emission; in a scene with portals, the light paths split there
+ * (IL_PORTAL_LIGHT_SHARE_MAX of them from the portals), or with `inside`
+ * as Linespace draws them (il_light_emit_inside, `share` from the portals). */
+static bool emit_share(const il_scene *s, bool inside, float share, il_pcg32 *rng, il_light_emission *e)
 {
     float u[IL_LIGHT_EMIT_DIMS];
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(rng);
-    return il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE_MAX, rng, 8, e);
+    return inside ? il_light_emit_inside(s, u, share, rng, 8, e) : il_light_emit(s, u, share, rng, 8, e);
+}
+
+static bool emit(const il_scene *s, il_pcg32 *rng, il_light_emission *e)
+{
+    return emit_share(s, false, IL_PORTAL_LIGHT_SHARE_MAX, rng, e);
 }
 
 /* Statistics of N photons. */
@@ -510,11 +517,8 @@ static void test_emit_inside(void)
         uint32_t portal = 0, lamp = 0, sky = 0;
         il_pcg32 rng = il_pcg32_seed(31, 5);
         for (int i = 0; i < N_PHOTONS; i++) {
-            float u[IL_LIGHT_EMIT_DIMS];
-            for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
-                u[k] = il_pcg32_float(&rng);
             il_light_emission e;
-            if (!il_light_emit_inside(s, u, share, &rng, 8, &e))
+            if (!emit_share(s, true, share, &rng, &e))
                 continue;
             if (e.portal) {
                 portal++;
@@ -600,11 +604,8 @@ static void test_portal_light_choice(void)
     uint32_t lamp = 0, lights = 0;
     il_pcg32 rng = il_pcg32_seed(13, 2);
     for (int i = 0; i < N_PHOTONS; i++) {
-        float u[IL_LIGHT_EMIT_DIMS];
-        for (int k = 0; k < IL_LIGHT_EMIT_DIMS; k++)
-            u[k] = il_pcg32_float(&rng);
         il_light_emission e;
-        if (!il_light_emit(s, u, IL_PORTAL_LIGHT_SHARE_MAX, &rng, 8, &e) || e.portal)
+        if (!emit(s, &rng, &e) || e.portal)
             continue;
         lights++;
         if (s->lights[e.light].kind == IL_LIGHTK_POINT) {
