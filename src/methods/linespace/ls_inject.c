@@ -132,6 +132,9 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     for (int i = 0; i < IL_LIGHT_EMIT_DIMS; i++)
         u[i] = il_pcg32_float(&rng);
     il_light_emission e;
+    /* Split at the portals, the Linespace holds the light inside alone,
+     * which the environment's own paths never reach (they stop where they
+     * would enter): il_light_emit_inside draws none. */
     bool emitted = il_light_emit_inside(s, u, portal_share, &rng, depth, &e);
     c->rays += e.rays;
     if (!emitted)
@@ -139,17 +142,14 @@ static void trace_path(const il_scene *s, const il_linespace *ls, uint32_t depth
     const il_tracer *tr = s->tracer;
     il_ray ray = {.org = e.org, .tmin = 0.0f, .dir = e.dir, .tmax = INFINITY};
     il_vec3 power = e.power;
-    /* Split at the portals, the Linespace holds the light inside alone,
-     * which the environment's own paths never reach (they stop where they
-     * would enter): il_light_emit_inside draws none. */
     /* The portals' light from a surface outside has bounced there. */
     for (uint32_t bounces = e.scattered ? 1 : 0, seg = 0;; bounces++, seg++) {
         il_hit hit;
         c->rays++;
         bool found = il_trace_closest(tr, &ray, &hit);
         float t_end = found ? hit.t : INFINITY, t_cross;
-        /* A sun's path that meets the outside before a window lights only
-         * the outside: nothing of it is kept. */
+        /* A sun's or a street lamp's path that meets the outside before a
+         * window lights only the outside: nothing of it is kept. */
         if (seg == 0 && !il_portal_light_starts_inside(s, &e, &ray, t_end))
             return;
         /* Entering by a portal, the path ends there: the portals' light
