@@ -4,7 +4,8 @@
  * ray count up to float rounding (the GPU's sinf/cosf can send a few paths
  * another way), and (b) the CPU path tracer il_render: the same mean
  * radiance within noise; the same for the Cornell box with a textured
- * panel and lit by an environment map.  Then the progressive render's stops (il_cuda_run):
+ * panel, lit by an environment map, and lit by the sun and a sky with a
+ * mirror that shows the sun's disc.  Then the progressive render's stops (il_cuda_run):
  * by its progress callback and by its time limit; and its sums over a
  * million samples per pixel.  Exits 77 (a skip for
  * ctest) without a GPU or driver, as on CI. */
@@ -57,8 +58,11 @@ static void compare(il_scene *s)
 /* The Cornell box with a checker-textured Phong panel on its floor (its
  * kd + ks above 1 where the checker is bright: scaled per hit), or lit
  * through its open front by a latitude-longitude environment map turned by
- * 40 degrees (a bright patch in a gradient). */
-static il_scene *cornell_with(bool panel, bool env_map)
+ * 40 degrees (a bright patch in a gradient), or by a sun 5 degrees up
+ * behind the camera, 8 degrees across, and a uniform sky, with a mirror
+ * over the back wall in which the camera sees the sun's disc (ilk_discs,
+ * and its light drawn across the disc in ilk_direct). */
+static il_scene *cornell_with(bool panel, bool env_map, bool sun)
 {
     il_error err = {0};
     il_scene *s = NULL;
@@ -93,6 +97,20 @@ static il_scene *cornell_with(bool panel, bool env_map)
             }
         il_image map = {.width = 32, .height = 16, .rgb = px};
         CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.map = &map, .rotation = 40.0f}, &err), &err);
+    }
+    if (sun) {
+        uint32_t mirror = 0;
+        CHECK_OK(il_scene_add_material(s, &(il_material_desc){.name = "mirror", .type = IL_MATERIAL_MIRROR,
+                                       .specular = {0.9f, 0.85f, 0.8f}}, &mirror, &err), &err);
+        /* 1 mm in front of the back wall (z = 0.559 m), facing the camera. */
+        float p[] = {0.05f, 0.05f, 0.558f, 0.5f, 0.05f, 0.558f, 0.5f, 0.5f, 0.558f, 0.05f, 0.5f, 0.558f};
+        uint32_t ix[] = {0, 2, 1, 0, 3, 2};
+        CHECK_OK(il_scene_add_mesh(s, &(il_mesh_desc){.num_vertices = 4, .num_triangles = 2, .positions = p,
+                                                       .indices = ix, .material = mirror}, &err), &err);
+        il_light_desc l = {.type = IL_LIGHT_DIRECTIONAL, .direction = {0.1f, -0.0875f, 1.0f},
+                           .intensity = {3.0f, 2.8f, 2.5f}, .diameter = 8.0f};
+        CHECK_OK(il_scene_add_light(s, &l, &err), &err);
+        CHECK_OK(il_scene_set_environment(s, &(il_environment_desc){.radiance = {0.2f, 0.3f, 0.5f}}, &err), &err);
     }
     if (il_scene_commit(s, &err) != IL_OK) {
         CHECK_OK(IL_ERR_INVALID, &err);
@@ -184,9 +202,10 @@ int main(void)
         compare(s);
         il_scene_release(s);
     }
-    /* A diffuse texture (ilk_material_at), an environment map (ilk_environment). */
-    for (int v = 0; v < 2; v++) {
-        s = cornell_with(v == 0, v == 1);
+    /* A diffuse texture (ilk_material_at), an environment map
+     * (ilk_environment), the sun's disc and a sky. */
+    for (int v = 0; v < 3; v++) {
+        s = cornell_with(v == 0, v == 1, v == 2);
         if (s) {
             compare(s);
             il_scene_release(s);
