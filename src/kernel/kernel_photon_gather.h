@@ -10,15 +10,36 @@
  *
  *     L_r(x) = sum_p f_r Phi_p / (pi r^2),   f_r = rho / pi  (Lambertian),
  *
- * keeping only photons whose normal agrees with the hit's (cosine above
- * ILK_GATHER_NORMAL_COS), so light does not leak round corners or through
- * thin walls (Jensen 2001, 7.2). */
+ * keeping only photons on the hit's surface (ilk_photon_on_surface), so
+ * light does not leak round corners or through thin walls (Jensen 2001,
+ * 7.2). */
 #ifndef IL_KERNEL_PHOTON_GATHER_H
 #define IL_KERNEL_PHOTON_GATHER_H
 
 #include "kernel/kernel_grid.h"
 
 #define ILK_GATHER_NORMAL_COS 0.9f
+/* How far off the hit's tangent plane a photon may lie, in radii, besides
+ * the d sin(theta) a curved or faceted surface takes (below). */
+#define ILK_GATHER_DISC_THICKNESS 0.1f
+
+/* Whether a photon lies on the surface at p (unit normal n): its normal
+ * within ILK_GATHER_NORMAL_COS of n, and off the tangent plane by at most
+ * ILK_GATHER_DISC_THICKNESS radii plus d sin(theta), d its distance and
+ * theta the turn of its normal from n (a smooth curve, or the next facet
+ * of a tessellated one).  Jensen's search sphere compressed along the
+ * normal into a disc (Jensen 2001, ch. 7): a floor's photons no longer
+ * count the ground's a centimetre beneath it, whose normal agrees.  The
+ * CPU photon method's test (methods/photon/pm_internal.h, il_pm_on_surface). */
+IL_DEVICE_INLINE bool ilk_photon_on_surface(const ilk_photon *ph, ilk_vec3 p, ilk_vec3 n, float radius)
+{
+    float c = ilk_dot(ph->n, n);
+    if (!(c > ILK_GATHER_NORMAL_COS))
+        return false;
+    ilk_vec3 o = ilk_sub(ph->p, p);
+    float beyond = fabsf(ilk_dot(o, n)) - ILK_GATHER_DISC_THICKNESS * radius;
+    return beyond <= 0.0f || beyond * beyond <= (1.0f - c * c) * ilk_dot(o, o);
+}
 
 /* Reflected radiance at p (unit normal n facing the viewer, albedo rho). */
 IL_DEVICE_INLINE ilk_vec3 ilk_photon_estimate(const ilk_grid *g, ilk_vec3 p, ilk_vec3 n, ilk_vec3 rho, float radius)
@@ -28,7 +49,7 @@ IL_DEVICE_INLINE ilk_vec3 ilk_photon_estimate(const ilk_grid *g, ilk_vec3 p, ilk
     uint32_t i;
     while (ilk_grid_next(g, &q, &i)) {
         const ilk_photon *ph = &g->photons[i];
-        if (ilk_dot(ph->n, n) > ILK_GATHER_NORMAL_COS)
+        if (ilk_photon_on_surface(ph, p, n, radius))
             sum = ilk_add(sum, ph->power);
     }
     float k = 1.0f / (ILK_PI * ILK_PI * radius * radius);

@@ -7,6 +7,9 @@
  *    finds (also with a 16-bucket table, where most cells collide);
  *  - the gather (density estimate at the camera's first hit) against the
  *    CPU path tracer il_render: the same image within the estimate's bias;
+ *  - the estimate counts the photons on the hit's surface alone (a disc:
+ *    not the ground a centimetre under a floor, a facet turned by 20
+ *    degrees yes);
  *  - bad input is refused. */
 #include <stdlib.h>
 #include <string.h>
@@ -202,6 +205,43 @@ static void test_gather(const il_scene *s, const il_kscene *ks, const il_kphoton
     free(k);
 }
 
+/* The estimate at the origin of a floor (normal +y) over hand-placed
+ * photons of power 1, in a one-bucket grid: it counts the floor's, those
+ * 0.05 radii above it and those on a facet through the origin turned by
+ * 20 degrees, and not the ground's 1 cm under the floor nor those 0.2 radii
+ * above it, whose normals agree with the floor's as well. */
+static void test_disc(void)
+{
+    const float r = 0.05f, turn = 20.0f * 3.14159265f / 180.0f;
+    enum { RING = 24, KINDS = 5 };
+    const float lift[KINDS] = {0.0f, -0.01f, 0.05f * r, 0.2f * r, 0.0f};
+    const bool counts[KINDS] = {true, false, true, false, true};
+    ilk_photon ph[RING * KINDS];
+    uint32_t n = 0, expected = 0;
+    for (int k = 0; k < KINDS; k++)
+        for (int i = 0; i < RING; i++) {
+            /* On a ring of 0.7 r, a little turned from kind to kind. */
+            float a = 6.2831853f * (i + 0.2f * k) / RING, x = 0.7f * r * cosf(a), z = 0.7f * r * sinf(a);
+            ilk_photon *q = &ph[n++];
+            q->p = ilk_v3(x, lift[k], z);
+            q->n = ilk_v3(0.0f, 1.0f, 0.0f);
+            if (k == KINDS - 1) { /* the facet: y = z tan(turn) */
+                q->p.y = z * tanf(turn);
+                q->n = ilk_v3(0.0f, cosf(turn), -sinf(turn));
+            }
+            q->power = ilk_v3(1.0f, 1.0f, 1.0f);
+            q->bounces = 1;
+            expected += counts[k];
+        }
+    uint32_t start = 0, end = n;
+    ilk_grid g = ilk_grid_make(ph, n, &start, &end, 0, ilk_grid_cell_size(r));
+    ilk_vec3 L = ilk_photon_estimate(&g, ilk_v3(0, 0, 0), ilk_v3(0, 1, 0), ilk_v3(1, 1, 1), r);
+    double counted = (double)L.x * ILK_PI * ILK_PI * r * r;
+    printf("disc: %.2f of %u photons counted (expected %u: the floor's, 0.05 r above, a 20-degree facet)\n",
+           counted, n, expected);
+    CHECK_REL(counted, (double)expected, 1e-5);
+}
+
 static void test_refused(const il_kscene *ks)
 {
     il_error err = {0};
@@ -229,6 +269,7 @@ int main(void)
         test_collisions(&map);
         test_gather(s, &ks, &map, radius);
     }
+    test_disc();
     test_refused(&ks);
     il_kphoton_map_free(&map);
     il_kscene_free(&ks);
